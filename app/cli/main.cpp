@@ -1,0 +1,2 @@
+#include "host/plugin_registry.hpp"
+int main() { return 0; }

@@ -1,0 +1,101 @@
+#include "plugin_instance.hpp"
+
+namespace arbor {
+
+PluginInstance::PluginInstance(arbor_plugin *plugin, std::unique_ptr<HostIdentity> host)
+    : plugin_(plugin), host_(std::move(host))
+{
+}
+
+PluginInstance::~PluginInstance()
+{
+    release();
+}
+
+PluginInstance::PluginInstance(PluginInstance &&other) noexcept
+    : plugin_(other.plugin_), host_(std::move(other.host_))
+{
+    other.plugin_ = nullptr;
+}
+
+PluginInstance &PluginInstance::operator=(PluginInstance &&other) noexcept
+{
+    if (this != &other) {
+        release();
+        plugin_ = other.plugin_;
+        host_ = std::move(other.host_);
+        other.plugin_ = nullptr;
+    }
+    return *this;
+}
+
+void PluginInstance::release()
+{
+    if (plugin_)
+        plugin_->destroy(plugin_);
+    plugin_ = nullptr;
+}
+
+const arbor_params_v1 *PluginInstance::params() const
+{
+    const auto *p =
+        static_cast<const arbor_params_v1 *>(plugin_->get_interface(plugin_, ARBOR_INTERFACE_PARAMS));
+    if (p && (!p->count || !p->describe || !p->get || !p->set))
+        return nullptr;
+    return p;
+}
+
+std::vector<const arbor_param_desc *> PluginInstance::param_descriptions() const
+{
+    std::vector<const arbor_param_desc *> out;
+    if (const arbor_params_v1 *p = params())
+        for (uint32_t i = 0, n = p->count(plugin_); i < n; ++i)
+            if (const arbor_param_desc *d = p->describe(plugin_, i))
+                out.push_back(d);
+    return out;
+}
+
+const arbor_param_desc *PluginInstance::find_param(const std::string &param_id) const
+{
+    for (const arbor_param_desc *d : param_descriptions())
+        if (param_id == d->id)
+            return d;
+    return nullptr;
+}
+
+void PluginInstance::set_param(const std::string &param_id, const arbor_param_value &value)
+{
+    const arbor_params_v1 *p = params();
+    if (!p)
+        throw PluginError(ARBOR_ERROR_NOT_FOUND, id() + " has no parameters");
+    check(p->set(plugin_, param_id.c_str(), &value), "setting parameter '" + param_id + "'");
+}
+
+arbor_param_value PluginInstance::get_param(const std::string &param_id) const
+{
+    const arbor_params_v1 *p = params();
+    if (!p)
+        throw PluginError(ARBOR_ERROR_NOT_FOUND, id() + " has no parameters");
+    arbor_param_value v{};
+    v.struct_size = sizeof(v);
+    check(p->get(plugin_, param_id.c_str(), &v), "reading parameter '" + param_id + "'");
+    return v;
+}
+
+std::string PluginInstance::last_error() const
+{
+    const char *e = plugin_->last_error ? plugin_->last_error(plugin_) : nullptr;
+    return e ? e : "";
+}
+
+void PluginInstance::check(arbor_status status, const std::string &doing) const
+{
+    if (status == ARBOR_OK)
+        return;
+    std::string reason = last_error();
+    if (reason.empty())
+        reason = arbor_status_name(status);
+    throw PluginError(status, id() + ": " + doing + ": " + reason);
+}
+
+} // namespace arbor

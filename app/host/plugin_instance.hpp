@@ -1,0 +1,69 @@
+// plugin_instance.hpp - an owned plugin instance and typed access to its
+// interfaces and parameters.  Every failing call becomes a PluginError whose
+// message names the plugin, what the host was doing and the plugin's reason.
+#pragma once
+
+#include "host_services.hpp"
+
+#include <arbor/arbor.h>
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace arbor {
+
+class PluginError : public std::runtime_error {
+public:
+    PluginError(arbor_status status, const std::string &message)
+        : std::runtime_error(message), status_(status) {}
+    arbor_status status() const { return status_; }
+
+private:
+    arbor_status status_;
+};
+
+class PluginInstance {
+public:
+    PluginInstance(arbor_plugin *plugin, std::unique_ptr<HostIdentity> host);
+    ~PluginInstance();
+    PluginInstance(PluginInstance &&other) noexcept;
+    PluginInstance &operator=(PluginInstance &&other) noexcept;
+    PluginInstance(const PluginInstance &) = delete;
+    PluginInstance &operator=(const PluginInstance &) = delete;
+
+    arbor_plugin *get() const { return plugin_; }
+    const arbor_plugin_descriptor &descriptor() const { return *plugin_->descriptor; }
+    std::string id() const { return plugin_->descriptor->id; }
+
+    // The table of an interface; throws PluginError when it is missing.
+    template <class Table>
+    const Table &interface(const char *interface_id) const
+    {
+        const void *t = plugin_->get_interface(plugin_, interface_id);
+        if (!t)
+            throw PluginError(ARBOR_ERROR_UNSUPPORTED,
+                              id() + " does not offer interface " + interface_id);
+        return *static_cast<const Table *>(t);
+    }
+
+    // Parameters (empty when the plugin has none).
+    const arbor_params_v1 *params() const;
+    std::vector<const arbor_param_desc *> param_descriptions() const;
+    const arbor_param_desc *find_param(const std::string &param_id) const;
+    void set_param(const std::string &param_id, const arbor_param_value &value);
+    arbor_param_value get_param(const std::string &param_id) const;
+
+    // Throws PluginError unless status is ARBOR_OK; `doing` says what the host
+    // asked for ("reading the header of scan.nrrd").
+    void check(arbor_status status, const std::string &doing) const;
+    std::string last_error() const;
+
+private:
+    void release();
+    arbor_plugin *plugin_ = nullptr;
+    std::unique_ptr<HostIdentity> host_;
+};
+
+} // namespace arbor

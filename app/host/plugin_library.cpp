@@ -1,0 +1,80 @@
+#include "plugin_library.hpp"
+
+#include "descriptor_rules.hpp"
+
+#include <dlfcn.h>
+
+#include <set>
+
+namespace arbor {
+
+std::unique_ptr<PluginLibrary> PluginLibrary::load(const std::filesystem::path &path)
+{
+    std::unique_ptr<PluginLibrary> lib(new PluginLibrary());
+    lib->path_ = path;
+    dlerror();
+    lib->handle_ = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!lib->handle_) {
+        const char *e = dlerror();
+        throw PluginRefused(std::string("cannot be loaded: ") + (e ? e : "unknown dlopen error"));
+    }
+    dlerror();
+    void *symbol = dlsym(lib->handle_, ARBOR_ENTRY_SYMBOL);
+    if (!symbol)
+        throw PluginRefused("has no '" ARBOR_ENTRY_SYMBOL "' entry symbol; not an Arbor plugin");
+    const auto *entry = static_cast<const arbor_plugin_entry *>(symbol);
+    const arbor_version v = entry->abi_version;
+    if (v.major != ARBOR_ABI_VERSION_MAJOR)
+        throw PluginRefused("was built for Arbor ABI " + std::to_string(v.major) + "." +
+                            std::to_string(v.minor) + "." + std::to_string(v.patch) +
+                            ", this host speaks ABI " + std::to_string(ARBOR_ABI_VERSION_MAJOR) +
+                            ".x; rebuild it against SDK " +
+                            std::to_string(ARBOR_ABI_VERSION_MAJOR) + ".x");
+    if (entry->struct_size < sizeof(arbor_plugin_entry))
+        throw PluginRefused("entry struct_size " + std::to_string(entry->struct_size) +
+                            " is smaller than " + std::to_string(sizeof(arbor_plugin_entry)));
+    if (!entry->init || !entry->deinit || !entry->plugin_count || !entry->plugin_descriptor ||
+        !entry->create_plugin)
+        throw PluginRefused("entry has NULL functions");
+    if (v.minor > ARBOR_ABI_VERSION_MINOR)
+        log_message(ARBOR_LOG_DEBUG, path.string(),
+                    "built for a newer ABI minor (" + std::to_string(v.minor) + ") than the host's");
+    lib->entry_ = entry;
+
+    lib->host_ = std::make_unique<HostIdentity>(path.filename().string());
+    const arbor_status s = entry->init(lib->host_->get(), path.c_str());
+    if (s != ARBOR_OK)
+        throw PluginRefused(std::string("init failed (") + arbor_status_name(s) + ")");
+    lib->initialised_ = true;
+
+    const uint32_t count = entry->plugin_count();
+    if (count == 0)
+        throw PluginRefused("holds no plugins");
+    if (count > 1000)
+        throw PluginRefused("claims " + std::to_string(count) + " plugins (at most 1000)");
+    std::set<std::string> ids;
+    for (uint32_t i = 0; i < count; ++i) {
+        const arbor_plugin_descriptor *d = entry->plugin_descriptor(i);
+        std::string problem = check_descriptor(d);
+        if (problem.empty() && !ids.insert(d->id).second)
+            problem = "plugin id '" + std::string(d->id) + "' appears twice in the library";
+        if (!problem.empty()) {
+            const std::string id = d && d->id && check_plugin_id(d->id).empty() ? d->id : "";
+            lib->refusals_.push_back({path.string(), id.empty() ? "#" + std::to_string(i) : id,
+                                      "descriptor " + std::to_string(i) + ": " + problem});
+            continue;
+        }
+        lib->accepted_.push_back(d);
+    }
+    return lib;
+}
+
+PluginLibrary::~PluginLibrary()
+{
+    if (initialised_ && entry_)
+        entry_->deinit();
+    if (handle_)
+        dlclose(handle_);
+}
+
+} // namespace arbor
