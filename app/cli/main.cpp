@@ -1,2 +1,88 @@
-#include "host/plugin_registry.hpp"
-int main() { return 0; }
+// `arbor`: the command-line front of the Arbor host.  Loads the plugins
+// first (their parameters become flags), parses, runs one subcommand.
+//
+// Exit status: 0 success, 1 the work failed (bad input, plugin error),
+// 2 the command line was wrong, 130 cancelled with Ctrl-C.
+#include "cli_context.hpp"
+#include "commands.hpp"
+
+#include "core/volume_header.hpp"
+
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <unistd.h>
+
+namespace {
+
+extern "C" void on_interrupt(int)
+{
+    // First Ctrl-C: ask running plugin calls to stop.  Second: leave now.
+    if (arbor::cancellation_requested())
+        _exit(130);
+    arbor::request_cancellation();
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    using namespace arbor;
+    std::signal(SIGINT, on_interrupt);
+
+    // Verbosity must be known before plugins load (they log while loading).
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "-v" || a == "--verbose")
+            set_log_level(ARBOR_LOG_DEBUG);
+        else if (a == "-q" || a == "--quiet")
+            set_log_level(ARBOR_LOG_ERROR);
+    }
+
+    cli::Context context;
+    context.executable = cli::executable_path(argv[0]);
+    context.max_volume_bytes = default_max_volume_bytes();
+    context.registry.load_directories(PluginRegistry::default_search_path(context.executable));
+
+    CLI::App app{"Arbor: explore CT and MR volumes through their contour tree.\n"
+                 "Run `arbor <command> --help` for the options of a command."};
+    app.name("arbor");
+    app.set_version_flag("--version", std::string("arbor ") + ARBOR_HOST_VERSION + " (plugin ABI " +
+                                          std::to_string(ARBOR_ABI_VERSION_MAJOR) + "." +
+                                          std::to_string(ARBOR_ABI_VERSION_MINOR) + ")");
+    bool verbose = false, quiet = false; // applied above, before plugins load
+    app.add_flag("-v,--verbose", verbose, "Log debug messages");
+    app.add_flag("-q,--quiet", quiet, "Log errors only");
+    app.require_subcommand(1);
+
+    cli::add_info_command(app, context);
+    cli::add_phantom_command(app, context);
+    cli::add_convert_command(app, context);
+    cli::add_plugins_command(app, context);
+    cli::add_plugin_check_command(app, context);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp &e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp &e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion &e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError &e) {
+        app.exit(e);
+        return 2;
+    }
+
+    const std::string name = app.get_subcommands().front()->get_name();
+    try {
+        return context.commands.at(name)();
+    } catch (const std::exception &e) {
+        if (cancellation_requested()) {
+            log_message(ARBOR_LOG_ERROR, "", "cancelled");
+            return 130;
+        }
+        log_message(ARBOR_LOG_ERROR, "", e.what());
+        return 1;
+    }
+}

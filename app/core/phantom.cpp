@@ -216,13 +216,13 @@ Volume make_phantom(const PhantomRecipe &recipe, const PhantomOptions &options)
             bool inside = false;
             for (const auto &name : recipe.blob_inside) {
                 const PhantomStructure &s = *find(recipe, name);
-                // Keep the whole blob well inside.
-                inside = inside || ellipsoid_radius(s, c) + 3 * r / std::min({s.radii[0], s.radii[1], s.radii[2]}) < 1.0;
+                // Keep the whole blob, with its smooth edge, inside.
+                inside = inside || ellipsoid_radius(s, c) + 2 * r / std::min({s.radii[0], s.radii[1], s.radii[2]}) < 1.0;
             }
             bool avoided = true;
             for (const auto &name : recipe.blob_avoid) {
                 const PhantomStructure &s = *find(recipe, name);
-                avoided = avoided && ellipsoid_radius(s, c) > 1.0 + 3 * r / std::min({s.radii[0], s.radii[1], s.radii[2]});
+                avoided = avoided && ellipsoid_radius(s, c) > 1.0 + 2 * r / std::min({s.radii[0], s.radii[1], s.radii[2]});
             }
             if (!inside || !avoided)
                 continue;

@@ -2,16 +2,42 @@
 
 #include <cmath>
 #include <cstring>
-#include <regex>
 #include <set>
+#include <string_view>
 
 namespace arbor {
 
 namespace {
 
-bool matches(const char *text, const std::regex &re)
+bool lower_alnum_or_dash(char c)
 {
-    return text && std::regex_match(text, re);
+    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-';
+}
+
+// A non-empty run of [a-z0-9-] whose first character is a letter (or, when
+// digits_first, a letter or a digit).
+bool id_part(std::string_view s, bool digits_first)
+{
+    if (s.empty())
+        return false;
+    const char c = s.front();
+    if (!((c >= 'a' && c <= 'z') || (digits_first && c >= '0' && c <= '9')))
+        return false;
+    for (char ch : s)
+        if (!lower_alnum_or_dash(ch))
+            return false;
+    return true;
+}
+
+// A decimal number without leading zeros.
+bool semver_number(std::string_view s)
+{
+    if (s.empty() || (s.size() > 1 && s.front() == '0'))
+        return false;
+    for (char c : s)
+        if (c < '0' || c > '9')
+            return false;
+    return true;
 }
 
 std::string quoted(const char *s)
@@ -42,12 +68,22 @@ const char *kind_interface_id(std::string_view kind)
 
 std::string check_plugin_id(const char *id)
 {
-    static const std::regex re("[a-z][a-z0-9-]*(\\.[a-z0-9][a-z0-9-]*){2,}");
     if (!id)
         return "plugin id is NULL";
     if (std::strlen(id) > 200)
         return "plugin id is longer than 200 characters";
-    if (!matches(id, re))
+    std::string_view rest(id);
+    int parts = 0;
+    bool valid = true;
+    for (;;) {
+        const std::size_t dot = rest.find('.');
+        valid = valid && id_part(rest.substr(0, dot), parts > 0);
+        ++parts;
+        if (dot == std::string_view::npos)
+            break;
+        rest.remove_prefix(dot + 1);
+    }
+    if (!valid || parts < 3)
         return "plugin id " + quoted(id) +
                " is not reverse-DNS (lowercase parts separated by dots, at least three, e.g. "
                "'org.example.filter.median')";
@@ -56,9 +92,26 @@ std::string check_plugin_id(const char *id)
 
 std::string check_semver(const char *version)
 {
-    static const std::regex re("(0|[1-9][0-9]*)\\.(0|[1-9][0-9]*)\\.(0|[1-9][0-9]*)(-[0-9A-Za-z.-]+)?");
-    if (!matches(version, re))
-        return "version " + quoted(version) + " is not MAJOR.MINOR.PATCH";
+    const std::string bad = "version " + quoted(version) + " is not MAJOR.MINOR.PATCH";
+    if (!version)
+        return bad;
+    std::string_view v(version);
+    const std::size_t dash = v.find('-');
+    if (dash != std::string_view::npos) {
+        const std::string_view suffix = v.substr(dash + 1);
+        if (suffix.empty())
+            return bad;
+        for (char c : suffix)
+            if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                  c == '.' || c == '-'))
+                return bad;
+        v = v.substr(0, dash);
+    }
+    const std::size_t a = v.find('.');
+    const std::size_t b = a == std::string_view::npos ? a : v.find('.', a + 1);
+    if (b == std::string_view::npos || !semver_number(v.substr(0, a)) ||
+        !semver_number(v.substr(a + 1, b - a - 1)) || !semver_number(v.substr(b + 1)))
+        return bad;
     return "";
 }
 
@@ -90,8 +143,7 @@ std::string check_descriptor(const arbor_plugin_descriptor *d)
 
 std::string check_param_id(const char *id)
 {
-    static const std::regex re("[a-z][a-z0-9-]*");
-    if (!matches(id, re))
+    if (!id || !id_part(id, false))
         return "parameter id " + quoted(id) + " must be lowercase letters, digits and '-'";
     return "";
 }

@@ -16,7 +16,8 @@ std::vector<uint8_t> read_head(const fs::path &path)
 {
     std::vector<uint8_t> head;
     std::error_code ec;
-    if (fs::is_directory(path, ec))
+    // Only regular files: opening a FIFO or a device could block or never end.
+    if (!fs::is_regular_file(path, ec))
         return head;
     std::ifstream in(path, std::ios::binary);
     if (!in)
@@ -78,8 +79,11 @@ std::vector<ImporterChoice> rank_importers(const PluginRegistry &registry, const
 std::string choose_importer(const PluginRegistry &registry, const fs::path &path)
 {
     std::error_code ec;
-    if (!fs::exists(path, ec))
+    const fs::file_status status = fs::status(path, ec);
+    if (!fs::exists(status))
         throw std::runtime_error(path.string() + ": no such file or folder");
+    if (!fs::is_regular_file(status) && !fs::is_directory(status))
+        throw std::runtime_error(path.string() + ": not a regular file or a folder");
     const auto ranked = rank_importers(registry, path);
     if (ranked.empty()) {
         std::string tried;
@@ -106,7 +110,16 @@ Volume import_volume(PluginInstance &importer, const fs::path &path, ProgressSin
     const std::string problem = check_volume_header(header, max_bytes);
     if (!problem.empty())
         throw std::runtime_error(path.string() + ": " + problem);
-    Volume volume = Volume::allocate(header, max_bytes);
+    Volume volume;
+    try {
+        volume = Volume::allocate(header, max_bytes);
+    } catch (const std::bad_alloc &) {
+        throw std::runtime_error(path.string() + ": the system refused " +
+                                 format_bytes(static_cast<uint64_t>(header.dims[0] * header.dims[1] *
+                                                                    header.dims[2]) *
+                                              arbor_voxel_size(header.voxel_type)) +
+                                 " for the voxels");
+    }
     arbor_volume target = volume.view();
     {
         Task task(progress);

@@ -5,9 +5,9 @@
 # time (so a missing library is a build error, not a load error).  The file is
 # named <target>.so.  Install it into a folder on ARBOR_PLUGIN_PATH or into
 # ~/.local/share/arbor/plugins.
-set(_ARBOR_PLUGIN_MAP "${CMAKE_CURRENT_LIST_DIR}/arbor-plugin.map")
-
 function(arbor_add_plugin target)
+  # The version script sits next to this file, wherever the function is called from.
+  set(_ARBOR_PLUGIN_MAP "${CMAKE_CURRENT_FUNCTION_LIST_DIR}/arbor-plugin.map")
   cmake_parse_arguments(ARG "" "OUTPUT_DIRECTORY" "SOURCES" ${ARGN})
   if(NOT ARG_SOURCES)
     message(FATAL_ERROR "arbor_add_plugin(${target}): SOURCES is required")

@@ -1,0 +1,33 @@
+// cli_context.hpp - what every command of the `arbor` CLI shares: the plugin
+// registry (loaded once, before argument parsing, because plugin parameters
+// become flags), the terminal progress display and the memory limit.
+#pragma once
+
+#include "terminal_progress.hpp"
+
+#include "host/plugin_registry.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <string>
+
+namespace arbor::cli {
+
+struct Context {
+    std::filesystem::path executable;
+    PluginRegistry registry;
+    TerminalProgress progress;
+    uint64_t max_volume_bytes = 0;
+    // The run function of each subcommand, by subcommand name.
+    std::map<std::string, std::function<int()>> commands;
+
+    void add_command(CLI::App *sub, std::function<int()> run) { commands[sub->get_name()] = std::move(run); }
+};
+
+// Path of the running executable (/proc/self/exe), for the built-in plugins.
+std::filesystem::path executable_path(const char *argv0);
+
+} // namespace arbor::cli

@@ -1,0 +1,15 @@
+// commands.hpp - the subcommands of `arbor`.  Each adds itself to the CLI
+// and registers its run function in the Context.
+#pragma once
+
+#include "cli_context.hpp"
+
+namespace arbor::cli {
+
+void add_info_command(CLI::App &app, Context &context);
+void add_plugins_command(CLI::App &app, Context &context);
+void add_plugin_check_command(CLI::App &app, Context &context);
+void add_phantom_command(CLI::App &app, Context &context);
+void add_convert_command(CLI::App &app, Context &context);
+
+} // namespace arbor::cli

@@ -1,0 +1,178 @@
+#include "conformance_fixtures.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace arbor {
+
+FixtureVolume::FixtureVolume(arbor_voxel_type type, int64_t n)
+{
+    const uint32_t size = arbor_voxel_size(type);
+    const int64_t count = n * n * n;
+    bytes_.assign(static_cast<std::size_t>(count * size), 0);
+    for (int64_t v = 0; v < count; ++v) {
+        const double x = static_cast<double>(v % 100);
+        unsigned char *p = bytes_.data() + v * size;
+        switch (type) {
+        case ARBOR_VOXEL_U8: { uint8_t t = static_cast<uint8_t>(x); std::memcpy(p, &t, 1); break; }
+        case ARBOR_VOXEL_I8: { int8_t t = static_cast<int8_t>(x - 50); std::memcpy(p, &t, 1); break; }
+        case ARBOR_VOXEL_U16: { uint16_t t = static_cast<uint16_t>(x * 10); std::memcpy(p, &t, 2); break; }
+        case ARBOR_VOXEL_I16: { int16_t t = static_cast<int16_t>(x * 10 - 500); std::memcpy(p, &t, 2); break; }
+        case ARBOR_VOXEL_U32: { uint32_t t = static_cast<uint32_t>(x * 1000); std::memcpy(p, &t, 4); break; }
+        case ARBOR_VOXEL_I32: { int32_t t = static_cast<int32_t>(x * 1000 - 50000); std::memcpy(p, &t, 4); break; }
+        case ARBOR_VOXEL_F32: { float t = static_cast<float>(x / 100); std::memcpy(p, &t, 4); break; }
+        case ARBOR_VOXEL_F64: { double t = x / 100; std::memcpy(p, &t, 8); break; }
+        default: break;
+        }
+    }
+    record_.struct_size = sizeof(record_);
+    record_.voxel_type = type;
+    for (int a = 0; a < 3; ++a) {
+        record_.dims[a] = n;
+        record_.spacing[a] = 1.0;
+    }
+    record_.strides[0] = size;
+    record_.strides[1] = size * n;
+    record_.strides[2] = size * n * n;
+    record_.direction[0] = record_.direction[4] = record_.direction[8] = 1.0;
+    record_.value_scale = 1.0;
+    record_.value_unit = "";
+    record_.voxels = bytes_.data();
+}
+
+FixtureTree::FixtureTree()
+    : parent_{-1, 0, 0}, depth_{0, 1, 1}, offsets_{0, 2, 2, 2}, children_{1, 2},
+      kind_{ARBOR_EXTREMUM_MAXIMUM, ARBOR_EXTREMUM_MAXIMUM, ARBOR_EXTREMUM_MINIMUM},
+      saddle_vertex_{0, 10, 20}, extremum_vertex_{511, 300, 100},
+      saddle_value_{0, 40, 60}, extremum_value_{100, 90, 10},
+      saddle_position_{0, 0, 0, 2, 1, 0, 4, 2, 0}, extremum_position_{7, 7, 7, 4, 5, 4, 4, 4, 1},
+      ids_{ARBOR_MEASURE_PERSISTENCE, ARBOR_MEASURE_VOLUME, ARBOR_MEASURE_VOLUME_MM3,
+           ARBOR_MEASURE_HYPERVOLUME, ARBOR_MEASURE_RELATIVE_HYPERVOLUME}
+{
+    // persistence, volume, volume-mm3, hypervolume, relative hypervolume
+    measures_ = {100, 512, 512, 25600, 25600,
+                 50,  40,  40,  3200,  1000,
+                 50,  30,  30,  600,   800};
+    relative_.resize(measures_.size());
+    for (std::size_t r = 0; r < 3; ++r)
+        for (std::size_t c = 0; c < 5; ++c)
+            relative_[r * 5 + c] = measures_[r * 5 + c] / measures_[c];
+    record_.struct_size = sizeof(record_);
+    record_.branch_count = 3;
+    record_.measure_count = 5;
+    record_.parent = parent_.data();
+    record_.depth = depth_.data();
+    record_.child_offsets = offsets_.data();
+    record_.children = children_.data();
+    record_.extremum_kind = kind_.data();
+    record_.saddle_vertex = saddle_vertex_.data();
+    record_.extremum_vertex = extremum_vertex_.data();
+    record_.saddle_value = saddle_value_.data();
+    record_.extremum_value = extremum_value_.data();
+    record_.saddle_position = saddle_position_.data();
+    record_.extremum_position = extremum_position_.data();
+    record_.measure_ids = ids_.data();
+    record_.measures = measures_.data();
+    record_.relative_measures = relative_.data();
+    record_.importance = nullptr;
+}
+
+arbor_measure_rows FixtureTree::rows() const
+{
+    arbor_measure_rows r{};
+    r.struct_size = sizeof(r);
+    r.row_count = 3;
+    r.measure_count = 5;
+    r.measure_ids = ids_.data();
+    r.measures = measures_.data();
+    r.relative_measures = relative_.data();
+    return r;
+}
+
+arbor_measure_rows FixtureTree::schema() const
+{
+    arbor_measure_rows r = rows();
+    r.row_count = 0;
+    return r;
+}
+
+FixtureDepiction::FixtureDepiction(uint32_t n)
+    : role_(n, ARBOR_ROLE_OTHER), at_saddle_(n, 1.0f), at_extremum_(n, 1.0f),
+      hue_(n, std::numeric_limits<float>::quiet_NaN()), saturation_(n, 1.0f)
+{
+    record_.struct_size = sizeof(record_);
+    record_.branch_count = n;
+    record_.role = role_.data();
+    record_.opacity_at_saddle = at_saddle_.data();
+    record_.opacity_at_extremum = at_extremum_.data();
+    record_.hue = hue_.data();
+    record_.saturation = saturation_.data();
+}
+
+FixtureTfSet::FixtureTfSet(uint32_t n, uint32_t lut_size)
+    : domain_(2 * n, 0.0), lut_(static_cast<std::size_t>(n) * lut_size * 4, 0.0f), offsets_(n + 1, 0)
+{
+    record_.struct_size = sizeof(record_);
+    record_.branch_count = n;
+    record_.lut_size = lut_size;
+    record_.opacity_unit_distance = 1.0;
+    record_.domain = domain_.data();
+    record_.lut = lut_.data();
+    record_.point_offsets = offsets_.data();
+    record_.points = nullptr;
+}
+
+void FixtureTfSet::fill_ramp(double lo, double hi)
+{
+    const uint32_t n = record_.branch_count, size = record_.lut_size;
+    for (uint32_t b = 0; b < n; ++b) {
+        domain_[2 * b] = lo;
+        domain_[2 * b + 1] = hi;
+        for (uint32_t i = 0; i < size; ++i) {
+            float *e = &lut_[(static_cast<std::size_t>(b) * size + i) * 4];
+            const float t = static_cast<float>(i) / static_cast<float>(size - 1);
+            e[0] = t;
+            e[1] = 1.0f - t;
+            e[2] = 0.5f;
+            e[3] = 0.2f * t;
+        }
+    }
+}
+
+FixtureImage::FixtureImage(uint32_t w, uint32_t h)
+    : rgba_(static_cast<std::size_t>(w) * h * 4, -1.0f), depth_(static_cast<std::size_t>(w) * h, 0.0f)
+{
+    record_.struct_size = sizeof(record_);
+    record_.width = w;
+    record_.height = h;
+    record_.row_stride = 4 * static_cast<int64_t>(w);
+    record_.rgba = rgba_.data();
+    record_.depth = depth_.data();
+}
+
+bool FixtureImage::all_in_unit_range() const
+{
+    for (float v : rgba_)
+        if (!std::isfinite(v) || v < 0.0f || v > 1.0f)
+            return false;
+    return true;
+}
+
+arbor_camera fixture_camera(int64_t n)
+{
+    arbor_camera c{};
+    c.struct_size = sizeof(c);
+    c.projection = ARBOR_PROJECTION_ORTHOGRAPHIC;
+    const double mid = 0.5 * static_cast<double>(n - 1);
+    c.focal_point[0] = c.focal_point[1] = c.focal_point[2] = mid;
+    c.position[0] = mid;
+    c.position[1] = mid - 4.0 * static_cast<double>(n);
+    c.position[2] = mid;
+    c.view_up[2] = 1.0;
+    c.view_angle = 30.0;
+    c.parallel_scale = static_cast<double>(n);
+    return c;
+}
+
+} // namespace arbor

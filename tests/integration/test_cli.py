@@ -1,0 +1,265 @@
+"""End-to-end tests of the `arbor` command on the shared real volumes.
+
+Run by ctest with ARBOR (the executable), ARBOR_SHARED_DIR (../shared),
+ARBOR_FIXTURE_PLUGIN_DIR (broken plugins) and ARBOR_SCRATCH (an empty folder).
+Expected values come from the data sets' READMEs in ../shared/data.
+"""
+import gzip
+import hashlib
+import json
+import os
+import pathlib
+import subprocess
+import unittest
+
+ARBOR = os.environ["ARBOR"]
+SHARED = pathlib.Path(os.environ["ARBOR_SHARED_DIR"])
+DATA = SHARED / "data"
+FIXTURES = pathlib.Path(os.environ["ARBOR_FIXTURE_PLUGIN_DIR"])
+SCRATCH = pathlib.Path(os.environ["ARBOR_SCRATCH"])
+PLUGIN_DIR = pathlib.Path(os.environ["ARBOR_PLUGIN_DIR"])
+
+
+def arbor(*args, env=None, check=True, memory_limit_mb=None):
+    """Runs arbor; returns (exit status, stdout, stderr)."""
+    full_env = dict(os.environ)
+    full_env.pop("ARBOR_PLUGIN_PATH", None)
+    full_env.pop("XDG_DATA_HOME", None)
+    full_env["HOME"] = str(SCRATCH / "home")  # no per-user plugins
+    full_env.update(env or {})
+    cmd = [ARBOR, *map(str, args)]
+    if memory_limit_mb:
+        cmd = ["bash", "-c", f'ulimit -v {memory_limit_mb * 1024} && exec "$@"', "arbor", *cmd]
+    p = subprocess.run(cmd, capture_output=True, text=True, env=full_env, timeout=600)
+    if check and p.returncode != 0:
+        raise AssertionError(f"arbor {' '.join(map(str, args))} failed ({p.returncode}):\n{p.stderr}")
+    return p.returncode, p.stdout, p.stderr
+
+
+def info(*args, **kw):
+    return json.loads(arbor("info", *args, "--json", **kw)[1])
+
+
+# name: (path under data/, dims, type, spacing, (min, max), mean, importer)
+VOLUMES = {
+    "nucleon": ("nucleon/nucleon.nrrd", [41, 41, 41], "u8", [1, 1, 1], (0, 249), 39.4, "nrrd"),
+    "neghip": ("neghip/neghip.nhdr", [64, 64, 64], "u8", [1, 1, 1], (0, 255), 18.4, "nrrd"),
+    "bucky": ("bucky/bucky.nhdr", [32, 32, 32], "u8", [1, 1, 1], (0, 255), 35.9, "nrrd"),
+    "tooth": ("tooth/tooth.nhdr", [103, 94, 161], "u8", [1, 1, 1], (0, 255), 103.2, "nrrd"),
+    "tooth16": ("tooth16_bigendian/tooth.nhdr", [103, 94, 161], "u16", [1, 1, 1], (0, 1300), 526.9, "nrrd"),
+    "walnut": ("walnut/walnut.nhdr", [128, 96, 114], "u16", [1, 1, 1], (0, 22526), 2050.9, "nrrd"),
+    "brain1": ("mr_brain_tumor_pyradiomics/brain1_image.nrrd", [256, 256, 25], "i16",
+               [0.78125, 0.78125, 6.5], (0, 3057), 385.7, "nrrd"),
+    "lidc2": ("ct_chest_lidc2/LIDC2.mha", [256, 256, 133], "u8", [1.40625, 1.40625, 2.5], (0, 255), 7.1,
+              "metaimage"),
+    "mrhead": ("mr_head_lowres/HeadMRVolume.mhd", [48, 62, 42], "u8", [4, 4, 4], None, None, "metaimage"),
+    "engine": ("engine/engine.vti", [256, 256, 128], "u8", [1, 1, 1], (0, 255), 22.3, "vtk-image"),
+    "bonsai": ("bonsai/bonsai.vti", [256, 256, 256], "u8", [1, 1, 1], (0, 255), 13.7, "vtk-image"),
+    "aneurism": ("aneurism/aneurism.vti", [256, 256, 256], "u8", [1, 1, 1], (0, 255), 1.07, "vtk-image"),
+    "hydrogen": ("hydrogen_orbital/hydrogen.vti", [64, 64, 64], "f32", [1, 1, 1], (0, 1), 0.019, "vtk-image"),
+    "ironprot": ("ironprot/ironProt.vtk", [68, 68, 68], "u8", [1, 1, 1], (0, 255), 13.1, "vtk-image"),
+    "colin27": ("mr_brain_colin27/ch2.nii.gz", [181, 217, 181], "u8", [1, 1, 1], (0, 254), 44.6, "nifti"),
+    "avm": ("ct_angio_avm/CT_AVM.nii.gz", [256, 242, 154], "u8", [0.7199, 0.7209, 1.0], None, None, "nifti"),
+}
+
+
+class InfoOnSharedVolumes(unittest.TestCase):
+    def test_every_volume_opens_with_its_documented_geometry_and_values(self):
+        for name, (rel, dims, vtype, spacing, value_range, mean, importer) in VOLUMES.items():
+            with self.subTest(volume=name):
+                j = info(DATA / rel)
+                self.assertEqual(j["dims"], dims)
+                self.assertEqual(j["voxel_type"], vtype)
+                self.assertTrue(j["importer"]["id"].endswith("." + importer), j["importer"])
+                for got, want in zip(j["spacing_mm"], spacing):
+                    self.assertAlmostEqual(got, want, delta=5e-4)
+                if value_range:
+                    self.assertAlmostEqual(j["stored"]["min"], value_range[0], places=3)
+                    self.assertAlmostEqual(j["stored"]["max"], value_range[1], places=3)
+                if mean is not None:
+                    self.assertAlmostEqual(j["stored"]["mean"], mean, delta=0.051 * max(1, mean))
+
+    def test_nifti_scale_gives_the_physical_range(self):
+        j = info(DATA / "ct_angio_avm/CT_AVM.nii.gz")
+        self.assertAlmostEqual(j["value_mapping"]["scale"], 2.2086, places=3)
+        self.assertAlmostEqual(j["physical"]["max"], 563.2, delta=0.5)
+
+    def test_text_output_names_the_essentials(self):
+        _, out, _ = arbor("info", DATA / "walnut/walnut.nhdr")
+        for word in ("Dimensions  128 x 96 x 114", "u16", "Spacing", "Origin", "Histogram", "median"):
+            self.assertIn(word, out)
+
+    def test_raw_file_with_explicit_parameters(self):
+        j = info(DATA / "tooth16_bigendian/tooth.raw", "--raw.dims", "103,94,161", "--raw.type", "u16",
+                 "--raw.endian", "big")
+        self.assertEqual(j["dims"], [103, 94, 161])
+        self.assertEqual(j["stored"]["max"], 1300)
+
+
+class Phantom(unittest.TestCase):
+    def test_phantom_is_the_builtin_default_data(self):
+        j = info("--phantom", "head")
+        self.assertEqual(j["dims"], [128, 128, 128])
+        self.assertEqual(j["voxel_type"], "u16")
+        self.assertEqual(j["source"], "phantom:head")
+
+    def test_phantom_file_is_deterministic_and_reads_back(self):
+        a, b = SCRATCH / "a.nrrd", SCRATCH / "b.nrrd"
+        for path in (a, b):
+            arbor("phantom", "--kind", "head", "-o", path, "--size", 64, "--noise", 5, "--blobs", 6, "--seed", 3)
+        self.assertEqual(hashlib.sha256(a.read_bytes()).digest(), hashlib.sha256(b.read_bytes()).digest())
+        j = info(a)
+        self.assertEqual(j["dims"], [64, 64, 64])
+        self.assertAlmostEqual(j["spacing_mm"][0], 200 / 64)
+        self.assertAlmostEqual(sum(j["origin_lps_mm"]) / 3, -0.5 * 200 / 64 * 63)
+        c = SCRATCH / "c.nrrd"
+        arbor("phantom", "-o", c, "--size", 64, "--noise", 5, "--blobs", 6, "--seed", 4)
+        self.assertNotEqual(a.read_bytes(), c.read_bytes())
+
+    def test_phantom_nests_structures_with_overlapping_ranges(self):
+        # Scalp brightest, skull darkest inside the head, tumour values inside the brain's range.
+        j = info("--phantom", "head", "--phantom-size", 64)
+        self.assertEqual(j["stored"]["max"], 700)
+
+
+class BadInput(unittest.TestCase):
+    def expect_failure(self, *args, words=(), status=1, **kw):
+        code, out, err = arbor(*args, check=False, **kw)
+        self.assertEqual(code, status, f"stdout: {out}\nstderr: {err}")
+        for w in words:
+            self.assertIn(w, err)
+        self.assertNotIn("Traceback", err)
+        return err
+
+    def write(self, name, data):
+        p = SCRATCH / name
+        p.write_bytes(data if isinstance(data, bytes) else data.encode())
+        return p
+
+    def test_missing_file(self):
+        self.expect_failure("info", SCRATCH / "nothing-here.nrrd", words=("no such file",))
+
+    def test_garbage_with_a_known_suffix(self):
+        p = self.write("garbage.nrrd", os.urandom(5000))
+        self.expect_failure("info", p)
+
+    def test_header_claiming_100000_cubed_voxels(self):
+        p = self.write("huge.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 100000 100000 100000\n"
+                                    "encoding: raw\n\n" + "x" * 100)
+        self.expect_failure("info", p, words=("100000",), memory_limit_mb=2048)
+
+    def test_products_that_overflow(self):
+        p = self.write("overflow.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\n"
+                                        "sizes: 9223372036854775807 9223372036854775807 2\nencoding: raw\n\n")
+        self.expect_failure("info", p, memory_limit_mb=2048)
+
+    def test_zero_and_negative_dims(self):
+        for sizes in ("0 64 64", "-5 64 64"):
+            with self.subTest(sizes=sizes):
+                p = self.write("bad-dims.nrrd", f"NRRD0004\ntype: uint8\ndimension: 3\nsizes: {sizes}\n"
+                                                "encoding: raw\n\n")
+                self.expect_failure("info", p)
+
+    def test_unknown_type(self):
+        p = self.write("type.nrrd", "NRRD0004\ntype: quaternion\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n")
+        self.expect_failure("info", p, words=("quaternion",))
+
+    def test_truncated_data(self):
+        p = self.write("short.nrrd", "NRRD0004\ntype: uint16\ndimension: 3\nsizes: 64 64 64\n"
+                                     "endian: little\nencoding: raw\n\n" + "\0" * 1000)
+        self.expect_failure("info", p)
+
+    def test_truncated_gzip(self):
+        body = gzip.compress(bytes(64 * 64 * 64))
+        p = self.write("short-gz.nrrd", b"NRRD0004\ntype: uint8\ndimension: 3\nsizes: 64 64 64\n"
+                                        b"encoding: gzip\n\n" + body[: len(body) // 2])
+        self.expect_failure("info", p)
+
+    def test_gzip_claiming_far_more_than_it_can_hold(self):
+        # 20 bytes of gzip cannot expand to 4 GB: refuse without allocating it.
+        p = self.write("bomb.nrrd", b"NRRD0004\ntype: uint32\ndimension: 3\nsizes: 1024 1024 1000\n"
+                                    b"encoding: gzip\n\n" + gzip.compress(b"\0" * 10))
+        self.expect_failure("info", p, memory_limit_mb=2048)
+
+    def test_raw_without_dimensions_names_the_flag(self):
+        self.expect_failure("info", DATA / "walnut/walnut.raw", words=("--raw.dims",))
+
+    def test_raw_with_an_invalid_flag_value(self):
+        self.expect_failure("info", DATA / "walnut/walnut.raw", "--raw.dims", "0,96,114", words=("dims",))
+
+    def test_raw_larger_than_the_file(self):
+        self.expect_failure("info", DATA / "walnut/walnut.raw", "--raw.dims", "512,512,512",
+                            "--raw.type", "u16")
+
+    def test_usage_errors_exit_with_2(self):
+        self.expect_failure("no-such-command", status=2)
+        self.expect_failure("info", "--no-such-flag", status=2)
+        self.expect_failure("phantom", status=2)  # -o is required
+
+    def test_every_command_has_help(self):
+        for cmd in ("info", "phantom", "convert", "plugins", "plugin-check"):
+            with self.subTest(command=cmd):
+                code, out, _ = arbor(cmd, "--help", check=False)
+                self.assertEqual(code, 0)
+                self.assertIn("Usage", out)
+
+
+class Plugins(unittest.TestCase):
+    def test_lists_the_shipped_importers(self):
+        j = json.loads(arbor("plugins", "--json")[1])
+        ids = {p["id"] for p in j["plugins"]}
+        for want in ("org.arbor.importer.nrrd", "org.arbor.importer.metaimage", "org.arbor.importer.raw",
+                     "org.arbor.importer.vtk-image", "org.arbor.importer.nifti"):
+            self.assertIn(want, ids)
+        self.assertEqual(j["refused"], [])
+
+    def test_refuses_broken_plugins_by_name_and_carries_on(self):
+        code, out, err = arbor("plugins", "--json", env={"ARBOR_PLUGIN_PATH": str(FIXTURES)})
+        self.assertEqual(code, 0)
+        j = json.loads(out)
+        reasons = {pathlib.Path(r["library"]).name + " " + r["plugin"]: r["reason"] for r in j["refused"]}
+        self.assertIn("ABI 2.0.0", reasons["fixture-abi2.so "])
+        self.assertIn("arbor_entry", reasons["fixture-no-entry.so "])
+        self.assertTrue(any("reverse-DNS" in v for v in reasons.values()))
+        ids = {p["id"] for p in j["plugins"]}
+        self.assertIn("org.arbor.test.good", ids)
+        self.assertIn("org.arbor.importer.nrrd", ids)
+        self.assertIn("fixture-abi2.so", err)  # also said on the terminal
+        # The host still works with broken plugins around.
+        j2 = info(DATA / "nucleon/nucleon.nrrd", env={"ARBOR_PLUGIN_PATH": str(FIXTURES)})
+        self.assertEqual(j2["dims"], [41, 41, 41])
+
+    def test_plugin_check_passes_on_every_shipped_plugin(self):
+        libs = sorted(PLUGIN_DIR.glob("*.so"))
+        self.assertTrue(libs)
+        code, out, err = arbor("plugin-check", *libs, "--json", check=False)
+        self.assertEqual(code, 0, out + err)
+        for lib in json.loads(out):
+            self.assertTrue(lib["passed"], lib)
+
+    def test_plugin_check_reports_a_crashing_plugin(self):
+        code, out, _ = arbor("plugin-check", FIXTURES / "fixture-crash.so", check=False)
+        self.assertEqual(code, 1)
+        self.assertIn("crashed with signal", out)
+
+
+class Convert(unittest.TestCase):
+    def test_convert_keeps_geometry_and_values(self):
+        out = SCRATCH / "lidc2.nrrd"
+        arbor("convert", DATA / "ct_chest_lidc2/LIDC2.mha", "-o", out)
+        a, b = info(DATA / "ct_chest_lidc2/LIDC2.mha"), info(out)
+        for key in ("dims", "voxel_type", "stored", "histogram"):
+            self.assertEqual(a[key], b[key], key)
+        for key in ("spacing_mm", "origin_lps_mm", "direction"):
+            for x, y in zip(a[key], b[key]):
+                self.assertAlmostEqual(x, y, places=9)
+
+    def test_failed_conversion_keeps_an_existing_file(self):
+        out = SCRATCH / "keep.nrrd"
+        out.write_text("precious")
+        arbor("convert", SCRATCH / "does-not-exist.nrrd", "-o", out, check=False)
+        self.assertEqual(out.read_text(), "precious")
+
+
+if __name__ == "__main__":
+    unittest.main()
