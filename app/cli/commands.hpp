@@ -11,5 +11,7 @@ void add_plugins_command(CLI::App &app, Context &context);
 void add_plugin_check_command(CLI::App &app, Context &context);
 void add_phantom_command(CLI::App &app, Context &context);
 void add_convert_command(CLI::App &app, Context &context);
+void add_pairs_command(CLI::App &app, Context &context);
+void add_tree_command(CLI::App &app, Context &context);
 
 } // namespace arbor::cli

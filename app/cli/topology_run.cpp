@@ -1,0 +1,34 @@
+#include "topology_run.hpp"
+
+#include "core/volume_header.hpp"
+
+#include <cstdio>
+
+namespace arbor::cli {
+
+topology::TopologyResult run_topology(const Volume &volume, const topology::ImportanceFn &importance,
+                                      Context &context)
+{
+    Task task(&context.progress); // owns the progress display for the run
+    return topology::compute_topology(volume, importance, [&](const char *stage, double fraction) {
+        if (cancellation_requested())
+            throw std::runtime_error("cancelled");
+        context.progress.report(stage, fraction);
+    });
+}
+
+void print_timings(const topology::TopologyResult &result, const Volume &volume)
+{
+    const double n = static_cast<double>(volume.voxel_count());
+    for (const topology::StageTiming &t : result.timings)
+        std::fprintf(stderr, "  %-20s %8.3f s\n", t.stage.c_str(), t.seconds);
+    std::fprintf(stderr, "  %-20s %8.3f s\n", "total", result.total_seconds);
+    const uint64_t peak = topology::peak_resident_bytes();
+    std::fprintf(stderr, "  %-20s %s (%.1f bytes/voxel, input %u bytes/voxel)\n", "peak memory",
+                 format_bytes(peak).c_str(), static_cast<double>(peak) / n,
+                 arbor_voxel_size(volume.type()));
+    std::fprintf(stderr, "  %-20s %zu nodes, %zu arcs, %zu branches\n", "contour tree",
+                 result.tree.node_count(), result.tree.arc_count(), result.branches.branches.size());
+}
+
+} // namespace arbor::cli

@@ -1,0 +1,67 @@
+// contour_tree.hpp - the contour tree of a scalar field, merged from its
+// augmented join and split trees (Carr, Snoeyink and Axen 2003), with its
+// augmentation: the arc every voxel lies on.
+//
+// Nodes are the critical vertices (minima, maxima, join and split saddles;
+// degenerate saddles keep their full degree); regular vertices are removed
+// from the tree but keep their arc in `vertex_arc`, so the segmentation is
+// never lost.  Every measure downstream (volume, hypervolume, labels) is
+// accumulated from this augmentation instead of re-flooding the volume.
+#pragma once
+
+#include "merge_tree.hpp"
+#include "uninitialized_buffer.hpp"
+#include "vertex_order.hpp"
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace arbor::topology {
+
+inline constexpr uint32_t kNoArc = 0xffffffffu;
+
+enum class NodeKind : uint8_t {
+    Minimum,
+    Maximum,
+    JoinSaddle,  // two or more arcs below, one above
+    SplitSaddle, // one arc below, two or more above
+    Saddle,      // two or more arcs on both sides (degenerate)
+    Lone,        // the only vertex of a one-voxel volume
+};
+
+const char *node_kind_name(NodeKind kind);
+
+struct ContourTree {
+    // Nodes in increasing simulated value (value, then vertex id): node 0 is
+    // the global minimum, the last node the global maximum.
+    std::vector<uint32_t> node_vertex;
+    std::vector<uint8_t> node_up;   // arcs above the node
+    std::vector<uint8_t> node_down; // arcs below the node
+    std::vector<NodeKind> node_kind;
+    // Arcs: lower and upper node index.  Arcs incident to a node are listed
+    // in node_arc_offsets/node_arcs.
+    std::vector<uint32_t> arc_lo;
+    std::vector<uint32_t> arc_hi;
+    std::vector<uint32_t> node_arc_offsets; // [nodes + 1]
+    std::vector<uint32_t> node_arcs;
+    // For every vertex id, the arc it lies on.  A node lies on several arcs;
+    // it carries the arc by which the merge removed it (stable, but measures
+    // count nodes on their own).  kNoArc for a one-voxel volume.
+    UninitializedBuffer<uint32_t> vertex_arc;
+
+    std::size_t node_count() const { return node_vertex.size(); }
+    std::size_t arc_count() const { return arc_lo.size(); }
+    // Node index of a vertex, or -1 when the vertex is regular.
+    int64_t node_of_vertex(uint32_t vertex) const;
+
+    // Sorted (vertex, node) pairs behind node_of_vertex.
+    std::vector<std::pair<uint32_t, uint32_t>> vertex_node;
+};
+
+// Merges the two trees (consumed: their parent arrays become work space).
+// `values` of voxel type `type` order the nodes.
+ContourTree merge_contour_tree(MergeTree join, MergeTree split, arbor_voxel_type type, const void *values,
+                               const ProgressFn &progress = {});
+
+} // namespace arbor::topology

@@ -1,0 +1,68 @@
+// grid_neighbors.hpp - the vertex neighbourhoods of the Freudenthal
+// triangulation of a regular grid, as TTK's implicit triangulation splits
+// each cube into six tetrahedra.
+//
+// Vertex (i, j, k) has the 14 neighbours (+-1,0,0) (0,+-1,0) (0,0,+-1)
+// +-(-1,1,0) +-(0,1,1) +-(-1,0,1) +-(-1,1,1); the diagonals run along
+// (-1,1,1), not (1,1,1).  Using TTK's split makes the piecewise-linear field,
+// and so every persistence pair, identical to TTK's.  Boundary vertices simply
+// have fewer neighbours (no virtual vertex at infinity).
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace arbor::topology {
+
+struct NeighborOffset {
+    int8_t di, dj, dk;
+};
+
+inline constexpr std::array<NeighborOffset, 14> kFreudenthalOffsets{{
+    {1, 0, 0},  {-1, 0, 0}, {0, 1, 0},  {0, -1, 0}, {0, 0, 1},   {0, 0, -1}, {-1, 1, 0},
+    {1, -1, 0}, {0, 1, 1},  {0, -1, -1}, {-1, 0, 1}, {1, 0, -1}, {-1, 1, 1}, {1, -1, -1},
+}};
+
+// Neighbour enumeration for one grid.  Interior vertices use precomputed
+// linear offsets; boundary vertices check each offset against the grid.
+class GridNeighbors {
+public:
+    GridNeighbors(int64_t nx, int64_t ny, int64_t nz) : nx_(nx), ny_(ny), nz_(nz)
+    {
+        for (std::size_t n = 0; n < kFreudenthalOffsets.size(); ++n) {
+            const NeighborOffset &o = kFreudenthalOffsets[n];
+            linear_[n] = o.di + nx * (o.dj + ny * o.dk);
+        }
+    }
+
+    int64_t size() const { return nx_ * ny_ * nz_; }
+    int64_t nx() const { return nx_; }
+    int64_t ny() const { return ny_; }
+    int64_t nz() const { return nz_; }
+
+    // Calls f(neighbour vertex id) for every neighbour of vertex v.
+    template <class F>
+    void for_each(int64_t v, F &&f) const
+    {
+        const int64_t i = v % nx_;
+        const int64_t j = (v / nx_) % ny_;
+        const int64_t k = v / (nx_ * ny_);
+        if (i > 0 && i + 1 < nx_ && j > 0 && j + 1 < ny_ && k > 0 && k + 1 < nz_) {
+            for (int64_t d : linear_)
+                f(v + d);
+            return;
+        }
+        for (std::size_t n = 0; n < kFreudenthalOffsets.size(); ++n) {
+            const NeighborOffset &o = kFreudenthalOffsets[n];
+            const int64_t a = i + o.di, b = j + o.dj, c = k + o.dk;
+            if (a >= 0 && a < nx_ && b >= 0 && b < ny_ && c >= 0 && c < nz_)
+                f(v + linear_[n]);
+        }
+    }
+
+private:
+    int64_t nx_, ny_, nz_;
+    std::array<int64_t, 14> linear_{};
+};
+
+} // namespace arbor::topology

@@ -1,0 +1,113 @@
+#include "merge_tree.hpp"
+
+#include "core/voxel_type.hpp"
+
+namespace arbor::topology {
+
+namespace {
+
+// Root of x's component, halving the path on the way.
+inline uint32_t find_root(uint32_t *uf, uint32_t x)
+{
+    while (uf[x] != x) {
+        uf[x] = uf[uf[x]];
+        x = uf[x];
+    }
+    return x;
+}
+
+template <bool Join, class T>
+MergeTree sweep(const GridNeighbors &grid, const T *f, const UninitializedBuffer<uint32_t> &order_buffer,
+                const ProgressFn &progress)
+{
+    const uint32_t n = static_cast<uint32_t>(order_buffer.size());
+    MergeTree tree;
+    tree.parent = UninitializedBuffer<uint32_t>(n);
+    tree.children = UninitializedBuffer<uint8_t>(n);
+    // Union-find by rank (balanced, so finds stay short), plus the newest
+    // vertex of each component, which the next merge attaches to.
+    UninitializedBuffer<uint32_t> uf(n), top(n);
+    UninitializedBuffer<uint8_t> height(n);
+    const uint32_t *order = order_buffer.data();
+    uint32_t *parent = tree.parent.data();
+    uint8_t *children = tree.children.data();
+    uint32_t *u = uf.data();
+    uint32_t *newest = top.data();
+    uint8_t *h = height.data();
+    constexpr uint32_t kProgressStep = 1u << 20;
+
+    for (uint32_t step = 0; step < n; ++step) {
+        const uint32_t v = order[Join ? step : n - 1 - step];
+        const T fv = f[v];
+        uint32_t roots[14];
+        int count = 0;
+        grid.for_each(v, [&](int64_t neighbor) {
+            const uint32_t w = static_cast<uint32_t>(neighbor);
+            // Simulation of simplicity: w was swept before v iff it is lower
+            // (join) or higher (split) by (value, id).
+            const bool before = Join ? (f[w] < fv || (f[w] == fv && w < v))
+                                     : (f[w] > fv || (f[w] == fv && w > v));
+            if (!before)
+                return;
+            const uint32_t c = find_root(u, w);
+            for (int i = 0; i < count; ++i)
+                if (roots[i] == c)
+                    return;
+            roots[count++] = c;
+        });
+        children[v] = static_cast<uint8_t>(count);
+        uint32_t root = v;
+        if (count == 0) {
+            u[v] = v;
+            h[v] = 0;
+        } else {
+            root = roots[0];
+            parent[newest[root]] = v;
+            for (int i = 1; i < count; ++i) {
+                const uint32_t c = roots[i];
+                parent[newest[c]] = v;
+                if (h[c] > h[root]) {
+                    u[root] = c;
+                    root = c;
+                } else {
+                    u[c] = root;
+                    if (h[c] == h[root])
+                        ++h[root];
+                }
+            }
+            u[v] = root;
+        }
+        newest[root] = v;
+        if (progress && (step & (kProgressStep - 1)) == kProgressStep - 1)
+            progress(static_cast<double>(step) / n);
+    }
+    if (n > 0)
+        parent[order[Join ? n - 1 : 0]] = kNoVertex;
+    return tree;
+}
+
+template <bool Join>
+MergeTree sweep_any(const GridNeighbors &grid, arbor_voxel_type type, const void *values,
+                    const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress)
+{
+    return dispatch_voxel_type(type, [&](auto t) {
+        using T = decltype(t);
+        return sweep<Join>(grid, static_cast<const T *>(values), order, progress);
+    });
+}
+
+} // namespace
+
+MergeTree compute_join_tree(const GridNeighbors &grid, arbor_voxel_type type, const void *values,
+                            const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress)
+{
+    return sweep_any<true>(grid, type, values, order, progress);
+}
+
+MergeTree compute_split_tree(const GridNeighbors &grid, arbor_voxel_type type, const void *values,
+                             const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress)
+{
+    return sweep_any<false>(grid, type, values, order, progress);
+}
+
+} // namespace arbor::topology

@@ -1,0 +1,37 @@
+// simplification.hpp - cutting the branch hierarchy: keep the branches whose
+// importance exceeds a threshold, or the N most important ones, and label
+// every voxel with the kept branch it falls in.
+//
+// A removed branch's voxels go to its nearest kept ancestor; a kept branch
+// whose parent was removed hangs off that ancestor too.  The root is always
+// kept.  With a monotone importance (persistence, volume, ITri on relative
+// measures) children are never more important than their parents and a cut is
+// simply a subtree; the nearest-kept-ancestor rule makes every cut well
+// defined anyway.
+#pragma once
+
+#include "branch_decomposition.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace arbor::topology {
+
+struct SimplificationCut {
+    std::vector<uint32_t> kept;       // branch indices of the full decomposition, root first
+    std::vector<int32_t> kept_index;  // per branch: index in `kept`, or -1
+    std::vector<uint32_t> label_of;   // per branch: index in `kept` of its nearest kept ancestor (or itself)
+    std::vector<int32_t> kept_parent; // per kept branch: index in `kept` of its nearest kept ancestor
+};
+
+// Keep branches with importance > threshold.
+SimplificationCut cut_by_threshold(const BranchDecomposition &d, double threshold);
+// Keep the `count` most important branches (root included; ties by index).
+SimplificationCut cut_by_count(const BranchDecomposition &d, std::size_t count);
+
+// Voxel -> index in cut.kept, for every voxel of the tree's volume.
+std::vector<uint32_t> label_voxels(const ContourTree &tree, const BranchDecomposition &d,
+                                   const SimplificationCut &cut);
+
+} // namespace arbor::topology

@@ -1,0 +1,128 @@
+#include "topology_pipeline.hpp"
+
+#include "grid_neighbors.hpp"
+#include "merge_tree.hpp"
+#include "vertex_order.hpp"
+
+#include "core/volume_statistics.hpp"
+#include "core/voxel_type.hpp"
+
+#include <chrono>
+#include <exception>
+#include <fstream>
+#include <stdexcept>
+#include <thread>
+
+namespace arbor::topology {
+
+namespace {
+
+class Stopwatch {
+public:
+    double lap()
+    {
+        const auto now = std::chrono::steady_clock::now();
+        const double s = std::chrono::duration<double>(now - last_).count();
+        last_ = now;
+        return s;
+    }
+
+private:
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+void refuse_non_finite(const Volume &volume)
+{
+    if (is_integer_voxel_type(volume.type()))
+        return;
+    const VolumeStatistics s = compute_statistics(volume, 1);
+    const int64_t bad = s.nan_count + s.infinite_count;
+    if (bad == 0)
+        return;
+    const Geometry &g = volume.geometry();
+    const int64_t v = s.first_non_finite;
+    throw std::invalid_argument(
+        "the volume has " + std::to_string(s.nan_count) + " NaN and " + std::to_string(s.infinite_count) +
+        " infinite values (the first at voxel " + std::to_string(v % g.dims[0]) + ", " +
+        std::to_string((v / g.dims[0]) % g.dims[1]) + ", " + std::to_string(v / (g.dims[0] * g.dims[1])) +
+        "); a contour tree needs finite values everywhere, so fill or mask them first");
+}
+
+} // namespace
+
+TopologyResult compute_topology(const Volume &volume, const ImportanceFn &importance,
+                                const StageProgressFn &progress)
+{
+    if (volume.empty() || volume.voxel_count() == 0)
+        throw std::invalid_argument("cannot compute the topology of an empty volume");
+    refuse_non_finite(volume);
+    const auto report = [&](const char *stage) -> ProgressFn {
+        if (!progress)
+            return {};
+        return [progress, stage](double f) { progress(stage, f); };
+    };
+
+    TopologyResult result;
+    Stopwatch total, watch;
+    const uint32_t n = static_cast<uint32_t>(volume.voxel_count());
+    const Geometry &g = volume.geometry();
+
+    UninitializedBuffer<uint32_t> order = sort_vertices(volume.type(), volume.data(), n, report("sorting"));
+    result.timings.push_back({"sort", watch.lap()});
+
+    // The two sweeps are independent: run the split tree on a second thread.
+    const GridNeighbors grid(g.dims[0], g.dims[1], g.dims[2]);
+    MergeTree join, split;
+    std::exception_ptr split_error;
+    std::thread split_thread([&] {
+        try {
+            split = compute_split_tree(grid, volume.type(), volume.data(), order);
+        } catch (...) {
+            split_error = std::current_exception();
+        }
+    });
+    try {
+        join = compute_join_tree(grid, volume.type(), volume.data(), order, report("join and split trees"));
+    } catch (...) {
+        split_thread.join();
+        throw;
+    }
+    split_thread.join();
+    if (split_error)
+        std::rethrow_exception(split_error);
+    order.release();
+    result.timings.push_back({"join+split trees", watch.lap()});
+
+    result.tree = merge_contour_tree(std::move(join), std::move(split), volume.type(), volume.data(),
+                                     report("merging trees"));
+    result.timings.push_back({"merge", watch.lap()});
+
+    const FieldView field{volume.type(), volume.data(), n, &g};
+    result.branches = decompose_branches(result.tree, field, importance, report("branches and measures"));
+    result.timings.push_back({"branches+measures", watch.lap()});
+    result.total_seconds = total.lap();
+    return result;
+}
+
+uint64_t peak_resident_bytes()
+{
+    std::ifstream status("/proc/self/status");
+    std::string key;
+    while (status >> key) {
+        if (key == "VmHWM:") {
+            uint64_t kb = 0;
+            status >> kb;
+            return kb * 1024;
+        }
+        std::getline(status, key);
+    }
+    return 0;
+}
+
+void reset_peak_resident_bytes()
+{
+    // Writing 5 to clear_refs resets VmHWM to the current resident size.
+    std::ofstream("/proc/self/clear_refs") << "5";
+}
+
+} // namespace arbor::topology

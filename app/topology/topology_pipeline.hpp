@@ -1,0 +1,44 @@
+// topology_pipeline.hpp - from a volume to its contour tree and branch
+// decomposition: order the vertices, sweep the join and split trees (in
+// parallel), merge them, decompose into branches with measures.  Reports
+// progress per stage and the time each stage took.
+#pragma once
+
+#include "branch_decomposition.hpp"
+#include "contour_tree.hpp"
+
+#include "core/volume.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace arbor::topology {
+
+struct StageTiming {
+    std::string stage;
+    double seconds = 0.0;
+};
+
+struct TopologyResult {
+    ContourTree tree;
+    BranchDecomposition branches;
+    std::vector<StageTiming> timings;
+    double total_seconds = 0.0;
+};
+
+// stage ("sorting", "join tree"...) and fraction in [0, 1]; may throw to
+// cancel.
+using StageProgressFn = std::function<void(const char *stage, double fraction)>;
+
+// Throws std::invalid_argument for volumes with NaN or infinite values
+// (naming how many and where) and for empty volumes.
+TopologyResult compute_topology(const Volume &volume, const ImportanceFn &importance,
+                                const StageProgressFn &progress = {});
+
+// Peak resident memory of this process so far, in bytes (VmHWM), and a way to
+// restart the peak (for benchmarks measuring one volume after another).
+uint64_t peak_resident_bytes();
+void reset_peak_resident_bytes();
+
+} // namespace arbor::topology

@@ -1,0 +1,142 @@
+#include "vertex_order.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <limits>
+#include <type_traits>
+#include <stdexcept>
+#include <vector>
+
+namespace arbor::topology {
+
+namespace {
+
+// Order-preserving unsigned keys.
+inline uint32_t key32(uint32_t x) { return x; }
+inline uint32_t key32(int32_t x) { return static_cast<uint32_t>(x) ^ 0x80000000u; }
+inline uint32_t key32(float x)
+{
+    if (x == 0.0f)
+        x = 0.0f; // -0.0 and +0.0 are equal values
+    const uint32_t b = std::bit_cast<uint32_t>(x);
+    return (b & 0x80000000u) ? ~b : (b | 0x80000000u);
+}
+inline uint64_t key64(double x)
+{
+    if (x == 0.0)
+        x = 0.0;
+    const uint64_t b = std::bit_cast<uint64_t>(x);
+    return (b & 0x8000000000000000ull) ? ~b : (b | 0x8000000000000000ull);
+}
+
+template <class T>
+inline uint32_t small_key(T x)
+{
+    if constexpr (std::is_signed_v<T>)
+        return static_cast<uint32_t>(static_cast<int32_t>(x) - static_cast<int32_t>(std::numeric_limits<T>::min()));
+    else
+        return static_cast<uint32_t>(x);
+}
+
+// Counting sort for 8- and 16-bit values: one histogram, one scatter.
+template <class T>
+void counting_sort(const T *v, uint32_t n, uint32_t *order, const ProgressFn &progress)
+{
+    constexpr std::size_t buckets = std::size_t{1} << (8 * sizeof(T));
+    std::vector<uint32_t> start(buckets + 1, 0);
+    for (uint32_t i = 0; i < n; ++i)
+        ++start[small_key(v[i]) + 1];
+    for (std::size_t b = 0; b < buckets; ++b)
+        start[b + 1] += start[b];
+    if (progress)
+        progress(0.4);
+    for (uint32_t i = 0; i < n; ++i)
+        order[start[small_key(v[i])]++] = i;
+}
+
+// LSD radix sort with 16-bit digits of 32-bit keys: two stable passes.
+template <class T>
+void radix_sort32(const T *v, uint32_t n, uint32_t *order, const ProgressFn &progress)
+{
+    constexpr std::size_t buckets = 1 << 16;
+    std::vector<uint32_t> lo(buckets + 1, 0), hi(buckets + 1, 0);
+    for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t k = key32(v[i]);
+        ++lo[(k & 0xffff) + 1];
+        ++hi[(k >> 16) + 1];
+    }
+    for (std::size_t b = 0; b < buckets; ++b) {
+        lo[b + 1] += lo[b];
+        hi[b + 1] += hi[b];
+    }
+    UninitializedBuffer<uint32_t> tmp_key(n), tmp_idx(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t k = key32(v[i]);
+        const uint32_t at = lo[k & 0xffff]++;
+        tmp_key[at] = k;
+        tmp_idx[at] = i;
+    }
+    if (progress)
+        progress(0.5);
+    for (uint32_t p = 0; p < n; ++p)
+        order[hi[tmp_key[p] >> 16]++] = tmp_idx[p];
+}
+
+// LSD radix sort with 16-bit digits of 64-bit keys: four stable passes.
+void radix_sort64(const double *v, uint32_t n, uint32_t *order, const ProgressFn &progress)
+{
+    constexpr std::size_t buckets = 1 << 16;
+    std::vector<std::vector<uint32_t>> count(4, std::vector<uint32_t>(buckets + 1, 0));
+    for (uint32_t i = 0; i < n; ++i) {
+        const uint64_t k = key64(v[i]);
+        for (int d = 0; d < 4; ++d)
+            ++count[d][((k >> (16 * d)) & 0xffff) + 1];
+    }
+    for (int d = 0; d < 4; ++d)
+        for (std::size_t b = 0; b < buckets; ++b)
+            count[d][b + 1] += count[d][b];
+    UninitializedBuffer<uint64_t> key_a(n), key_b(n);
+    UninitializedBuffer<uint32_t> idx_a(n), idx_b(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        key_a[i] = key64(v[i]);
+        idx_a[i] = i;
+    }
+    for (int d = 0; d < 4; ++d) {
+        std::vector<uint32_t> &c = count[d];
+        for (uint32_t p = 0; p < n; ++p) {
+            const uint32_t at = c[(key_a[p] >> (16 * d)) & 0xffff]++;
+            key_b[at] = key_a[p];
+            idx_b[at] = idx_a[p];
+        }
+        std::swap(key_a, key_b);
+        std::swap(idx_a, idx_b);
+        if (progress)
+            progress(0.2 * (d + 1));
+    }
+    std::memcpy(order, idx_a.data(), sizeof(uint32_t) * n);
+}
+
+} // namespace
+
+UninitializedBuffer<uint32_t> sort_vertices(arbor_voxel_type type, const void *values, uint32_t n,
+                                            const ProgressFn &progress)
+{
+    UninitializedBuffer<uint32_t> order(n);
+    switch (type) {
+    case ARBOR_VOXEL_U8: counting_sort(static_cast<const uint8_t *>(values), n, order.data(), progress); break;
+    case ARBOR_VOXEL_I8: counting_sort(static_cast<const int8_t *>(values), n, order.data(), progress); break;
+    case ARBOR_VOXEL_U16: counting_sort(static_cast<const uint16_t *>(values), n, order.data(), progress); break;
+    case ARBOR_VOXEL_I16: counting_sort(static_cast<const int16_t *>(values), n, order.data(), progress); break;
+    case ARBOR_VOXEL_U32: radix_sort32(static_cast<const uint32_t *>(values), n, order.data(), progress); break;
+    case ARBOR_VOXEL_I32: radix_sort32(static_cast<const int32_t *>(values), n, order.data(), progress); break;
+    case ARBOR_VOXEL_F32: radix_sort32(static_cast<const float *>(values), n, order.data(), progress); break;
+    case ARBOR_VOXEL_F64: radix_sort64(static_cast<const double *>(values), n, order.data(), progress); break;
+    default: throw std::invalid_argument("cannot order vertices of unknown voxel type");
+    }
+    if (progress)
+        progress(1.0);
+    return order;
+}
+
+} // namespace arbor::topology
