@@ -29,6 +29,21 @@ int64_t ContourTree::node_of_vertex(uint32_t vertex) const
 
 namespace {
 
+// What the merge keeps per vertex, packed into 16 bytes so that one cache
+// line serves every access to a vertex: the two trees' links and degrees,
+// the contour-tree arc being built, and the contour-tree degrees so far.
+struct VertexState {
+    uint32_t jt_up;
+    uint32_t st_down;
+    uint32_t label;
+    uint8_t jt_deg; // kRemoved once the vertex has left the trees
+    uint8_t st_deg;
+    uint8_t cnt_up;
+    uint8_t cnt_down;
+};
+static_assert(sizeof(VertexState) == kMergeWorkBytes);
+constexpr uint8_t kRemoved = 0xff;
+
 // Leaf pruning on the two augmented trees (Carr, Snoeyink, Axen).  A vertex is
 // removed once it is a leaf of one tree with a single arc in the other: an
 // upper leaf (no split-tree children, one join-tree child) hands its contour
@@ -38,66 +53,73 @@ namespace {
 // arc that reached it; an edge leaving a node starts a new arc.
 class LeafPruning {
 public:
-    LeafPruning(MergeTree &join, MergeTree &split, uint32_t n)
-        : n_(n), jt_up_(join.parent.data()), jt_deg_(join.children.data()), st_down_(split.parent.data()),
-          st_deg_(split.children.data()), removed_((n + 63) / 64, 0), label_(n), cnt_up_(n), cnt_down_(n)
-    {
-        std::fill(cnt_up_.data(), cnt_up_.data() + n, uint8_t{0});
-        std::fill(cnt_down_.data(), cnt_down_.data() + n, uint8_t{0});
-    }
+    LeafPruning(VertexState *state, uint32_t n) : n_(n), s_(state) {}
 
     void run(const ProgressFn &progress)
     {
         std::vector<uint32_t> stack;
         for (uint32_t v = 0; v < n_; ++v)
-            if (is_leaf(v))
+            if (is_leaf(s_[v]))
                 stack.push_back(v);
         uint32_t remaining = n_;
         const uint32_t step = std::max<uint32_t>(1, n_ / 64);
+        uint32_t next_report = step;
+        // Leaves are taken a batch at a time and the vertices they will
+        // attach to are prefetched first, so the cache misses of several
+        // independent chains overlap instead of queueing one after another.
+        constexpr std::size_t kBatch = 8;
+        uint32_t batch[kBatch];
         while (!stack.empty() && remaining > 1) {
-            const uint32_t v = stack.back();
-            stack.pop_back();
-            if (is_removed(v))
-                continue;
-            uint32_t w;
-            if (st_deg_[v] == 0 && jt_deg_[v] == 1) {
-                w = find(st_down_, v);
-                emit(v, w, /*downward=*/true);
-                --st_deg_[w];
-            } else if (jt_deg_[v] == 0 && st_deg_[v] == 1) {
-                w = find(jt_up_, v);
-                emit(v, w, /*downward=*/false);
-                --jt_deg_[w];
-            } else {
-                continue; // pushed while a leaf, no longer one
+            std::size_t count = 0;
+            while (count < kBatch && !stack.empty()) {
+                const uint32_t v = stack.back();
+                stack.pop_back();
+                const VertexState &sv = s_[v];
+                if (sv.jt_deg == kRemoved)
+                    continue;
+                __builtin_prefetch(&s_[sv.st_deg == 0 ? sv.st_down : sv.jt_up]);
+                batch[count++] = v;
             }
-            mark_removed(v);
-            --remaining;
-            if (is_leaf(w))
-                stack.push_back(w);
-            if (progress && (n_ - remaining) % step == 0)
+            for (std::size_t i = 0; i < count && remaining > 1; ++i) {
+                const uint32_t v = batch[i];
+                VertexState &sv = s_[v];
+                if (sv.jt_deg == kRemoved)
+                    continue;
+                uint32_t w;
+                if (sv.st_deg == 0 && sv.jt_deg == 1) {
+                    w = find(&VertexState::st_down, v);
+                    emit(v, w, /*downward=*/true);
+                    --s_[w].st_deg;
+                } else if (sv.jt_deg == 0 && sv.st_deg == 1) {
+                    w = find(&VertexState::jt_up, v);
+                    emit(v, w, /*downward=*/false);
+                    --s_[w].jt_deg;
+                } else {
+                    continue; // pushed while a leaf, no longer one
+                }
+                sv.jt_deg = kRemoved;
+                --remaining;
+                if (is_leaf(s_[w]))
+                    stack.push_back(w);
+            }
+            if (progress && n_ - remaining >= next_report) {
                 progress(static_cast<double>(n_ - remaining) / n_);
+                next_report += step;
+            }
         }
         if (remaining != 1)
             throw std::logic_error("contour tree merge stopped with " + std::to_string(remaining) +
                                    " vertices left");
-        for (uint32_t word = 0; word < removed_.size(); ++word)
-            if (removed_[word] != ~uint64_t{0}) {
-                for (uint32_t bit = 0; bit < 64; ++bit)
-                    if (!((removed_[word] >> bit) & 1u)) {
-                        last_ = word * 64 + bit;
-                        break;
-                    }
+        for (uint32_t v = 0; v < n_; ++v)
+            if (s_[v].jt_deg != kRemoved) {
+                last_ = v;
                 break;
             }
         // The last vertex closes the arcs that reached it.
-        if (cnt_up_[last_] + cnt_down_[last_] > 0)
+        if (s_[last_].cnt_up + s_[last_].cnt_down > 0)
             close_pending(last_);
     }
 
-    UninitializedBuffer<uint32_t> &labels() { return label_; }
-    const UninitializedBuffer<uint8_t> &up_counts() const { return cnt_up_; }
-    const UninitializedBuffer<uint8_t> &down_counts() const { return cnt_down_; }
     struct Arc {
         uint32_t start, end;
         bool downward;
@@ -106,71 +128,64 @@ public:
     uint32_t last() const { return last_; }
 
 private:
-    bool is_removed(uint32_t v) const { return (removed_[v >> 6] >> (v & 63)) & 1u; }
-    void mark_removed(uint32_t v) { removed_[v >> 6] |= uint64_t{1} << (v & 63); }
-
-    bool is_leaf(uint32_t v) const
+    static bool is_leaf(const VertexState &s)
     {
-        return (st_deg_[v] == 0 && jt_deg_[v] == 1) || (jt_deg_[v] == 0 && st_deg_[v] == 1);
+        return (s.st_deg == 0 && s.jt_deg == 1) || (s.jt_deg == 0 && s.st_deg == 1);
     }
 
-    // First vertex that is not removed along the parent links from v's
-    // parent, compressing the path.
-    uint32_t find(uint32_t *parent, uint32_t v)
+    // First vertex that is not removed along the links from v's link,
+    // compressing the path.
+    uint32_t find(uint32_t VertexState::*link, uint32_t v)
     {
-        uint32_t x = parent[v];
+        uint32_t x = s_[v].*link;
         uint32_t root = x;
-        while (root != kNoVertex && is_removed(root))
-            root = parent[root];
+        while (root != kNoVertex && s_[root].jt_deg == kRemoved)
+            root = s_[root].*link;
         if (root == kNoVertex)
             throw std::logic_error("contour tree merge found no vertex to attach to");
         while (x != root) {
-            const uint32_t next = parent[x];
-            parent[x] = root;
+            const uint32_t next = s_[x].*link;
+            s_[x].*link = root;
             x = next;
         }
-        parent[v] = root;
+        s_[v].*link = root;
         return root;
     }
 
-    // The first arc that reached v is pending in label_[v]; it ends at v.
-    void close_pending(uint32_t v) { arcs_[label_[v]].end = v; }
+    // The first arc that reached v is pending in its label; it ends at v.
+    void close_pending(uint32_t v) { arcs_[s_[v].label].end = v; }
 
     void emit(uint32_t v, uint32_t w, bool downward)
     {
-        const bool regular = downward ? (cnt_up_[v] == 1 && cnt_down_[v] == 0)
-                                      : (cnt_down_[v] == 1 && cnt_up_[v] == 0);
+        VertexState &sv = s_[v];
+        VertexState &sw = s_[w];
+        const bool regular = downward ? (sv.cnt_up == 1 && sv.cnt_down == 0)
+                                      : (sv.cnt_down == 1 && sv.cnt_up == 0);
         uint32_t arc;
         if (regular) {
-            arc = label_[v]; // the arc that reached v goes on through it
+            arc = sv.label; // the arc that reached v goes on through it
         } else {
-            if (cnt_up_[v] + cnt_down_[v] > 0)
+            if (sv.cnt_up + sv.cnt_down > 0)
                 close_pending(v);
             arc = static_cast<uint32_t>(arcs_.size());
             arcs_.push_back({v, kNoVertex, downward});
         }
-        label_[v] = arc;
+        sv.label = arc;
         if (downward) {
-            ++cnt_down_[v];
-            ++cnt_up_[w];
+            ++sv.cnt_down;
+            ++sw.cnt_up;
         } else {
-            ++cnt_up_[v];
-            ++cnt_down_[w];
+            ++sv.cnt_up;
+            ++sw.cnt_down;
         }
-        if (cnt_up_[w] + cnt_down_[w] == 1)
-            label_[w] = arc; // pending: continues through w if w is regular
+        if (sw.cnt_up + sw.cnt_down == 1)
+            sw.label = arc; // pending: continues through w if w is regular
         else
             arcs_[arc].end = w; // w has two or more arcs: a node
     }
 
     uint32_t n_;
-    uint32_t *jt_up_;
-    uint8_t *jt_deg_;
-    uint32_t *st_down_;
-    uint8_t *st_deg_;
-    std::vector<uint64_t> removed_;
-    UninitializedBuffer<uint32_t> label_;
-    UninitializedBuffer<uint8_t> cnt_up_, cnt_down_;
+    VertexState *s_;
     std::vector<Arc> arcs_;
     uint32_t last_ = 0;
 };
@@ -191,19 +206,25 @@ NodeKind kind_of(uint8_t up, uint8_t down)
 } // namespace
 
 ContourTree merge_contour_tree(MergeTree join, MergeTree split, arbor_voxel_type type, const void *values,
-                               const ProgressFn &progress)
+                               const ProgressFn &progress, void *work)
 {
     const uint32_t n = static_cast<uint32_t>(join.parent.size());
     ContourTree ct;
     if (n == 0)
         return ct;
-    LeafPruning pruning(join, split, n);
-    pruning.run(progress);
-    join.parent.release();
-    split.parent.release();
+    UninitializedBuffer<VertexState> own;
+    VertexState *state = static_cast<VertexState *>(work);
+    if (!state) {
+        own = UninitializedBuffer<VertexState>(n);
+        state = own.data();
+    }
+    for (uint32_t v = 0; v < n; ++v)
+        state[v] = {join.parent[v], split.parent[v], 0, join.children[v], split.children[v], 0, 0};
+    split = MergeTree{};
+    join.children.release();
 
-    const auto &up = pruning.up_counts();
-    const auto &down = pruning.down_counts();
+    LeafPruning pruning(state, n);
+    pruning.run(progress);
     auto &arcs = pruning.arcs();
 
     // The merge may end on a regular vertex (one edge from each side): the
@@ -211,7 +232,7 @@ ContourTree merge_contour_tree(MergeTree join, MergeTree split, arbor_voxel_type
     std::vector<uint32_t> arc_alias(arcs.size());
     std::iota(arc_alias.begin(), arc_alias.end(), 0u);
     const uint32_t z = pruning.last();
-    if (up[z] == 1 && down[z] == 1) {
+    if (state[z].cnt_up == 1 && state[z].cnt_down == 1) {
         uint32_t a = kNoArc, b = kNoArc;
         for (uint32_t i = 0; i < arcs.size(); ++i)
             if (arcs[i].end == z)
@@ -225,7 +246,7 @@ ContourTree merge_contour_tree(MergeTree join, MergeTree split, arbor_voxel_type
     // Nodes: every vertex that is not regular, in simulated-value order.
     std::vector<uint32_t> nodes;
     for (uint32_t v = 0; v < n; ++v)
-        if (!(up[v] == 1 && down[v] == 1))
+        if (!(state[v].cnt_up == 1 && state[v].cnt_down == 1))
             nodes.push_back(v);
     dispatch_voxel_type(type, [&](auto t) {
         using T = decltype(t);
@@ -236,9 +257,10 @@ ContourTree merge_contour_tree(MergeTree join, MergeTree split, arbor_voxel_type
     ct.node_vertex = nodes;
     ct.vertex_node.reserve(nodes.size());
     for (uint32_t i = 0; i < nodes.size(); ++i) {
-        ct.node_up.push_back(up[nodes[i]]);
-        ct.node_down.push_back(down[nodes[i]]);
-        ct.node_kind.push_back(kind_of(up[nodes[i]], down[nodes[i]]));
+        const VertexState &sv = state[nodes[i]];
+        ct.node_up.push_back(sv.cnt_up);
+        ct.node_down.push_back(sv.cnt_down);
+        ct.node_kind.push_back(kind_of(sv.cnt_up, sv.cnt_down));
         ct.vertex_node.emplace_back(nodes[i], i);
     }
     std::sort(ct.vertex_node.begin(), ct.vertex_node.end());
@@ -274,14 +296,10 @@ ContourTree merge_contour_tree(MergeTree join, MergeTree split, arbor_voxel_type
         ct.node_arcs[fill[ct.arc_hi[a]]++] = static_cast<uint32_t>(a);
     }
 
-    // Augmentation: the labels are per vertex already; compact them in place.
-    ct.vertex_arc = std::move(pruning.labels());
-    if (arcs.empty()) {
-        ct.vertex_arc[0] = kNoArc;
-    } else {
-        for (uint32_t v = 0; v < n; ++v)
-            ct.vertex_arc[v] = compact[ct.vertex_arc[v]];
-    }
+    // Augmentation, into the join tree's parent array (no longer needed).
+    ct.vertex_arc = std::move(join.parent);
+    for (uint32_t v = 0; v < n; ++v)
+        ct.vertex_arc[v] = arcs.empty() ? kNoArc : compact[state[v].label];
     return ct;
 }
 

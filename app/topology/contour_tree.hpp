@@ -59,9 +59,14 @@ struct ContourTree {
     std::vector<std::pair<uint32_t, uint32_t>> vertex_node;
 };
 
-// Merges the two trees (consumed: their parent arrays become work space).
-// `values` of voxel type `type` order the nodes.
+// Bytes per vertex the merge needs as work space.
+inline constexpr std::size_t kMergeWorkBytes = 16;
+
+// Merges the two trees (consumed; the join tree's parent array becomes
+// vertex_arc).  `values` of voxel type `type` order the nodes.  `work`, when
+// given, holds at least kMergeWorkBytes per vertex and is used instead of a
+// fresh allocation.
 ContourTree merge_contour_tree(MergeTree join, MergeTree split, arbor_voxel_type type, const void *values,
-                               const ProgressFn &progress = {});
+                               const ProgressFn &progress = {}, void *work = nullptr);
 
 } // namespace arbor::topology

@@ -18,7 +18,7 @@ inline uint32_t find_root(uint32_t *uf, uint32_t x)
 
 template <bool Join, class T>
 MergeTree sweep(const GridNeighbors &grid, const T *f, const UninitializedBuffer<uint32_t> &order_buffer,
-                const ProgressFn &progress)
+                const ProgressFn &progress, const SweepScratch &scratch)
 {
     const uint32_t n = static_cast<uint32_t>(order_buffer.size());
     MergeTree tree;
@@ -26,14 +26,12 @@ MergeTree sweep(const GridNeighbors &grid, const T *f, const UninitializedBuffer
     tree.children = UninitializedBuffer<uint8_t>(n);
     // Union-find by rank (balanced, so finds stay short), plus the newest
     // vertex of each component, which the next merge attaches to.
-    UninitializedBuffer<uint32_t> uf(n), top(n);
-    UninitializedBuffer<uint8_t> height(n);
     const uint32_t *order = order_buffer.data();
     uint32_t *parent = tree.parent.data();
     uint8_t *children = tree.children.data();
-    uint32_t *u = uf.data();
-    uint32_t *newest = top.data();
-    uint8_t *h = height.data();
+    uint32_t *u = scratch.uf;
+    uint32_t *newest = scratch.top;
+    uint8_t *h = scratch.height;
     constexpr uint32_t kProgressStep = 1u << 20;
 
     for (uint32_t step = 0; step < n; ++step) {
@@ -88,26 +86,39 @@ MergeTree sweep(const GridNeighbors &grid, const T *f, const UninitializedBuffer
 
 template <bool Join>
 MergeTree sweep_any(const GridNeighbors &grid, arbor_voxel_type type, const void *values,
-                    const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress)
+                    const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress,
+                    const SweepScratch *scratch)
 {
+    UninitializedBuffer<uint32_t> uf, top;
+    UninitializedBuffer<uint8_t> height;
+    SweepScratch own{};
+    if (!scratch) {
+        uf = UninitializedBuffer<uint32_t>(order.size());
+        top = UninitializedBuffer<uint32_t>(order.size());
+        height = UninitializedBuffer<uint8_t>(order.size());
+        own = {uf.data(), top.data(), height.data()};
+        scratch = &own;
+    }
     return dispatch_voxel_type(type, [&](auto t) {
         using T = decltype(t);
-        return sweep<Join>(grid, static_cast<const T *>(values), order, progress);
+        return sweep<Join>(grid, static_cast<const T *>(values), order, progress, *scratch);
     });
 }
 
 } // namespace
 
 MergeTree compute_join_tree(const GridNeighbors &grid, arbor_voxel_type type, const void *values,
-                            const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress)
+                            const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress,
+                            const SweepScratch *scratch)
 {
-    return sweep_any<true>(grid, type, values, order, progress);
+    return sweep_any<true>(grid, type, values, order, progress, scratch);
 }
 
 MergeTree compute_split_tree(const GridNeighbors &grid, arbor_voxel_type type, const void *values,
-                             const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress)
+                             const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress,
+                             const SweepScratch *scratch)
 {
-    return sweep_any<false>(grid, type, values, order, progress);
+    return sweep_any<false>(grid, type, values, order, progress, scratch);
 }
 
 } // namespace arbor::topology

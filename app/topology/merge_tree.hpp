@@ -38,10 +38,24 @@ struct MergeTree {
     UninitializedBuffer<uint8_t> children;
 };
 
+// Work space of one sweep, one entry per vertex: union-find parents, the
+// newest vertex of each component, union-by-rank heights (9 bytes a vertex).
+// The pipeline lends the same memory to the merge afterwards, so it is
+// faulted in once.
+struct SweepScratch {
+    uint32_t *uf;
+    uint32_t *top;
+    uint8_t *height;
+};
+inline constexpr std::size_t kSweepScratchBytes = 9;
+
 // The two sweeps over `values` (voxel type `type`) in the order `order`.
+// Without scratch, each sweep allocates its own.
 MergeTree compute_join_tree(const GridNeighbors &grid, arbor_voxel_type type, const void *values,
-                            const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress = {});
+                            const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress = {},
+                            const SweepScratch *scratch = nullptr);
 MergeTree compute_split_tree(const GridNeighbors &grid, arbor_voxel_type type, const void *values,
-                             const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress = {});
+                             const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress = {},
+                             const SweepScratch *scratch = nullptr);
 
 } // namespace arbor::topology

@@ -71,18 +71,31 @@ TopologyResult compute_topology(const Volume &volume, const ImportanceFn &import
     result.timings.push_back({"sort", watch.lap()});
 
     // The two sweeps are independent: run the split tree on a second thread.
+    // Their work space is one block, which the merge reuses afterwards.
     const GridNeighbors grid(g.dims[0], g.dims[1], g.dims[2]);
+    static_assert(2 * kSweepScratchBytes >= kMergeWorkBytes);
+    const auto aligned = [](std::size_t bytes) { return (bytes + 63) / 64 * 64; };
+    const std::size_t words = aligned(4 * std::size_t{n}), bytes = aligned(n);
+    UninitializedBuffer<uint8_t> scratch(2 * (2 * words + bytes));
+    uint8_t *base = scratch.data();
+    const auto carve = [&](std::size_t at) {
+        return SweepScratch{reinterpret_cast<uint32_t *>(base + at), reinterpret_cast<uint32_t *>(base + at + words),
+                            base + at + 2 * words};
+    };
+    const SweepScratch join_scratch = carve(0);
+    const SweepScratch split_scratch = carve(2 * words + bytes);
     MergeTree join, split;
     std::exception_ptr split_error;
     std::thread split_thread([&] {
         try {
-            split = compute_split_tree(grid, volume.type(), volume.data(), order);
+            split = compute_split_tree(grid, volume.type(), volume.data(), order, {}, &split_scratch);
         } catch (...) {
             split_error = std::current_exception();
         }
     });
     try {
-        join = compute_join_tree(grid, volume.type(), volume.data(), order, report("join and split trees"));
+        join = compute_join_tree(grid, volume.type(), volume.data(), order, report("join and split trees"),
+                                 &join_scratch);
     } catch (...) {
         split_thread.join();
         throw;
@@ -94,7 +107,8 @@ TopologyResult compute_topology(const Volume &volume, const ImportanceFn &import
     result.timings.push_back({"join+split trees", watch.lap()});
 
     result.tree = merge_contour_tree(std::move(join), std::move(split), volume.type(), volume.data(),
-                                     report("merging trees"));
+                                     report("merging trees"), scratch.data());
+    scratch.release();
     result.timings.push_back({"merge", watch.lap()});
 
     const FieldView field{volume.type(), volume.data(), n, &g};

@@ -261,5 +261,83 @@ class Convert(unittest.TestCase):
         self.assertEqual(out.read_text(), "precious")
 
 
+class Topology(unittest.TestCase):
+    def test_pairs_match_ttk_on_a_shared_volume(self):
+        out = SCRATCH / "nucleon.pairs"
+        arbor("pairs", DATA / "nucleon/nucleon.nrrd", "-o", out)
+        ours = {tuple(map(int, l.split()[:3])) for l in out.read_text().splitlines() if l and not l.startswith("#")}
+        with gzip.open(SHARED / "reference/ttk/nucleon.pairs.txt.gz", "rt") as f:
+            ttk = {tuple(map(int, l.split()[:3])) for l in f if l.strip() and not l.startswith("#")}
+        self.assertEqual(ours, ttk)
+        header = out.read_text().splitlines()[5]
+        self.assertEqual(header.split()[1:], ["type", "birth_vertex", "death_vertex", "birth_value", "death_value",
+                                              "persistence", "bx", "by", "bz", "dx", "dy", "dz"])
+
+    def test_tree_json_describes_nodes_arcs_and_branches(self):
+        out = SCRATCH / "phantom-tree.json"
+        code, _, err = arbor("tree", "--phantom", "head", "--phantom-size", 48, "--json", out, "--timings")
+        j = json.loads(out.read_text())
+        self.assertEqual(j["format"], "arbor-contour-tree/1")
+        self.assertEqual(len(j["arcs"]), len(j["nodes"]) - 1)
+        kinds = {n["kind"] for n in j["nodes"]}
+        self.assertTrue({"minimum", "maximum"} <= kinds)
+        root = j["branches"][0]
+        self.assertEqual(root["kind"], "root")
+        self.assertEqual(root["measures"]["volume"], 48 ** 3)
+        self.assertEqual(root["relative_measures"]["persistence"], 1)
+        for b in j["branches"][1:]:
+            parent = j["branches"][b["parent"]]
+            self.assertEqual(b["depth"], parent["depth"] + 1)
+            self.assertIn(b["id"], parent["children"])
+            self.assertLessEqual(b["measures"]["volume"], parent["measures"]["volume"])
+            for key in ("persistence", "volume", "volume-mm3", "hypervolume", "relative-hypervolume"):
+                self.assertGreaterEqual(b["measures"][key], 0)
+                self.assertLessEqual(b["relative_measures"][key], 1.0 + 1e-9)
+            self.assertEqual(len(b["extremum"]["position_mm"]), 3)
+        self.assertAlmostEqual(j["branches"][1]["measures"]["volume-mm3"],
+                               j["branches"][1]["measures"]["volume"] * (200 / 48) ** 3, places=3)
+        for stage in ("sort", "join+split trees", "merge", "total", "peak memory"):
+            self.assertIn(stage, err)
+
+    def test_tree_cut_writes_a_label_map(self):
+        out, labels = SCRATCH / "cut.json", SCRATCH / "labels.nrrd"
+        arbor("tree", "--phantom", "head", "--phantom-size", 48, "--phantom-noise", 4, "--json", out,
+              "--keep", 6, "--labels", labels)
+        j = json.loads(out.read_text())
+        self.assertEqual(len(j["simplified"]["kept_branches"]), 6)
+        self.assertEqual(sum(1 for b in j["branches"] if b["kept"]), 6)
+        info_labels = info(labels)
+        self.assertEqual(info_labels["dims"], [48, 48, 48])
+        self.assertEqual(info_labels["stored"]["min"], 0)
+        self.assertLessEqual(info_labels["stored"]["max"], 5)
+
+    def test_non_finite_values_are_refused_with_where_they_are(self):
+        import struct
+        values = [0.5] * 27
+        values[13] = float("nan")
+        p = SCRATCH / "nan.nrrd"
+        p.write_bytes(b"NRRD0004\ntype: float\ndimension: 3\nsizes: 3 3 3\nendian: little\nencoding: raw\n\n"
+                      + struct.pack("<27f", *values))
+        code, _, err = arbor("pairs", p, "-o", SCRATCH / "nan.pairs", check=False)
+        self.assertEqual(code, 1)
+        self.assertIn("1 NaN", err)
+        self.assertIn("1, 1, 1", err)
+
+    def test_constant_and_single_voxel_volumes(self):
+        for sizes in ("4 3 2", "1 1 1"):
+            with self.subTest(sizes=sizes):
+                n = 1
+                for d in sizes.split():
+                    n *= int(d)
+                p = SCRATCH / "flat.nrrd"
+                p.write_bytes(f"NRRD0004\ntype: uint8\ndimension: 3\nsizes: {sizes}\nencoding: raw\n\n".encode()
+                              + bytes([7] * n))
+                out = SCRATCH / "flat.json"
+                arbor("tree", p, "--json", out)
+                j = json.loads(out.read_text())
+                self.assertEqual(len(j["branches"]), 1)
+                self.assertEqual(j["branches"][0]["measures"]["volume"], n)
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -78,7 +78,7 @@ TEST(Phantom, StructuresAreNestedWithOverlappingValues)
     EXPECT_NEAR(at(-0.705, 0, 0), 700, 1);               // scalp shell
     EXPECT_NEAR(at(-0.645, 0, 0), 80, 1);                // skull shell
     EXPECT_NEAR(at(-0.60, 0, 0), 150, 1);                // CSF
-    EXPECT_NEAR(at(-0.52, 0, 0), 470, 1);                // grey matter
+    EXPECT_NEAR(at(-0.47, 0, 0), 470, 1);                // grey matter
     const PhantomStructure &ventricle = structure(r, "ventricle");
     EXPECT_NEAR(at(ventricle.center[0], ventricle.center[1], ventricle.center[2]), 150, 1);
     const PhantomStructure &tumour = structure(r, "tumour");
