@@ -55,19 +55,47 @@ struct EndingBranch {
     BranchKind kind;
     uint32_t extremum;
     uint32_t saddle;
-    uint32_t arc; // the arc leaving the saddle on the branch's side
     BranchMeasures measures;
     double importance;
+};
+
+// Union-find over contour-tree nodes whose roots carry the representative
+// extremum of their component.
+class Components {
+public:
+    explicit Components(std::size_t n) : parent_(n), rep_(n) {}
+    void make(uint32_t x)
+    {
+        parent_[x] = x;
+        rep_[x] = x;
+    }
+    uint32_t find(uint32_t x)
+    {
+        while (parent_[x] != x) {
+            parent_[x] = parent_[parent_[x]];
+            x = parent_[x];
+        }
+        return x;
+    }
+    uint32_t rep(uint32_t root) const { return rep_[root]; }
+    // Joins a into root b, which keeps representative `rep`.
+    void join(uint32_t a, uint32_t b, uint32_t rep)
+    {
+        parent_[a] = b;
+        rep_[b] = rep;
+    }
+
+private:
+    std::vector<uint32_t> parent_, rep_;
 };
 
 class Decomposer {
 public:
     Decomposer(const ContourTree &tree, const FieldView &field, const ImportanceFn &importance)
-        : tree_(tree), field_(field), importance_(importance), regions_(tree, field)
+        : tree_(tree), importance_(importance), regions_(tree, field)
     {
-        const std::size_t nodes = tree.node_count();
         gmin_ = 0;
-        gmax_ = static_cast<uint32_t>(nodes - 1);
+        gmax_ = static_cast<uint32_t>(tree.node_count() - 1);
         f_min_ = regions_.node_value(gmin_);
         f_max_ = regions_.node_value(gmax_);
         mm3_ = voxel_volume(*field.geometry);
@@ -82,12 +110,12 @@ public:
 
     BranchDecomposition run(const ProgressFn &progress)
     {
-        decide(/*downward=*/true);
+        sweep(/*join=*/true);
         if (progress)
-            progress(0.6);
-        decide(/*downward=*/false);
+            progress(0.4);
+        sweep(/*join=*/false);
         if (progress)
-            progress(0.8);
+            progress(0.7);
         return assemble();
     }
 
@@ -97,106 +125,93 @@ private:
         return tree_.arc_lo[arc] == from ? tree_.arc_hi[arc] : tree_.arc_lo[arc];
     }
 
-    BranchMeasures make_measures(double count, double sum, double saddle_value, double extremum_value,
-                                 bool below) const
+    BranchMeasures measures_of(uint32_t saddle, uint32_t arc, uint32_t extremum, bool basin) const
     {
+        const RegionSums r = regions_.measure({saddle, arc});
+        const double fs = regions_.node_value(saddle);
         BranchMeasures m;
-        m.absolute[kPersistence] = std::fabs(saddle_value - extremum_value);
-        m.absolute[kVolume] = count;
-        m.absolute[kVolumeMm3] = count * mm3_;
-        m.absolute[kHypervolume] = sum - count * f_min_;
-        // Height above (depth below) the saddle level, integrated over the
-        // region: sum of |f - f(saddle)| whenever the region lies on one side
-        // of its saddle's level; a pit inside a peak's region (a bump inside a
-        // basin's) counts against it.
-        m.absolute[kRelativeHypervolume] =
-            std::max(0.0, below ? count * saddle_value - sum : sum - count * saddle_value);
+        m.absolute[kPersistence] = std::fabs(fs - regions_.node_value(extremum));
+        m.absolute[kVolume] = r.count;
+        m.absolute[kVolumeMm3] = r.count * mm3_;
+        m.absolute[kHypervolume] = r.sum - r.count * f_min_;
+        // The volume between the function and the saddle level: sum over the
+        // region of f - f(saddle) for a peak, f(saddle) - f for a basin.  It is
+        // the sum of |f - f(saddle)| whenever the region lies on one side of
+        // its saddle level; a pit inside a peak's region (a bump inside a
+        // basin's) counts against it.  Exact |.| sums would need the value
+        // distribution of every region, out of reach in O(1) per branch.
+        m.absolute[kRelativeHypervolume] = std::max(0.0, basin ? r.count * fs - r.sum : r.sum - r.count * fs);
         for (int i = 0; i < kMeasureCount; ++i)
             m.relative[i] = root_.absolute[i] > 0 ? m.absolute[i] / root_.absolute[i] : 0.0;
         return m;
     }
 
-    // Measures of the candidate branch on side `arc` of `saddle`.
-    BranchMeasures measures_of(uint32_t saddle, uint32_t arc, bool below, uint32_t extremum) const
-    {
-        const RegionSums r = regions_.measure({saddle, arc});
-        if (r.toward_root) {
-            // The side holds the rest of the volume: measure it as the whole.
-            BranchMeasures m = root_;
-            m.absolute[kPersistence] =
-                std::fabs(regions_.node_value(saddle) - regions_.node_value(extremum));
-            m.relative[kPersistence] =
-                root_.absolute[kPersistence] > 0 ? m.absolute[kPersistence] / root_.absolute[kPersistence] : 0.0;
-            return m;
-        }
-        return make_measures(r.count, r.sum, regions_.node_value(saddle), regions_.node_value(extremum), below);
-    }
-
-    // downward: decide at every node with two or more arcs below it, in
-    // increasing order (the continuing path below each arc is known by then);
-    // otherwise at every node with two or more arcs above, in decreasing order.
-    void decide(bool downward)
+    // The elder rule on the join tree (join: nodes upwards, components of
+    // sublevel sets) or on the split tree (downwards, superlevel sets), both
+    // rebuilt from the contour tree by union-find over its nodes.  Where two
+    // or more components meet at a node, each is a candidate branch: the
+    // component's representative extremum and the region beyond the node on
+    // the component's arc.  The most important continues (the global extremum
+    // of the sweep always does; equal importance: the older extremum), the
+    // others end at the node.
+    void sweep(bool join)
     {
         const std::size_t nodes = tree_.node_count();
-        std::vector<uint32_t> &cont = downward ? cont_down_ : cont_up_;
-        std::vector<uint32_t> &rep = downward ? rep_min_ : rep_max_;
-        cont.assign(nodes, kNoArc);
-        rep.assign(nodes, 0);
-        const uint32_t forced = downward ? gmin_ : gmax_;
-        std::vector<uint32_t> arcs, reps;
+        Components comp(nodes);
+        const uint32_t forced = join ? gmin_ : gmax_;
+        std::vector<uint32_t> arcs, roots;
         std::vector<BranchMeasures> rows;
         std::vector<double> values;
         for (std::size_t step = 0; step < nodes; ++step) {
-            const uint32_t x = static_cast<uint32_t>(downward ? step : nodes - 1 - step);
+            const uint32_t x = static_cast<uint32_t>(join ? step : nodes - 1 - step);
+            comp.make(x);
             arcs.clear();
+            roots.clear();
             for (uint32_t k = tree_.node_arc_offsets[x]; k < tree_.node_arc_offsets[x + 1]; ++k) {
                 const uint32_t a = tree_.node_arcs[k];
-                if ((downward ? tree_.arc_hi[a] : tree_.arc_lo[a]) == x)
-                    arcs.push_back(a);
-            }
-            if (arcs.empty()) {
-                rep[x] = x; // an extremum represents itself
-                continue;
-            }
-            reps.clear();
-            for (uint32_t a : arcs)
-                reps.push_back(rep[far_end(a, x)]);
-            if (arcs.size() == 1) {
-                cont[x] = arcs[0];
-                rep[x] = reps[0];
-                continue;
-            }
-            // Candidates: every side; the one holding the global extremum of
-            // this direction is forced to continue and needs no importance.
-            rows.clear();
-            for (std::size_t i = 0; i < arcs.size(); ++i)
-                rows.push_back(reps[i] == forced ? root_ : measures_of(x, arcs[i], downward, reps[i]));
-            values.assign(rows.size(), 0.0);
-            importance_(rows, values);
-            std::size_t best = 0;
-            for (std::size_t i = 0; i < arcs.size(); ++i) {
-                if (reps[i] != forced && (!std::isfinite(values[i]) || values[i] < 0.0))
-                    throw std::invalid_argument(
-                        "the importance function returned " + std::to_string(values[i]) +
-                        " for a branch (persistence " + std::to_string(rows[i].absolute[kPersistence]) +
-                        ", volume " + std::to_string(rows[i].absolute[kVolume]) +
-                        "); importance must be a finite number >= 0");
-                if (i == best)
+                if ((join ? tree_.arc_hi[a] : tree_.arc_lo[a]) != x)
+                    continue; // not an arc from a node swept before x
+                const uint32_t r = comp.find(far_end(a, x));
+                if (std::find(roots.begin(), roots.end(), r) != roots.end())
                     continue;
-                if (older_wins(reps[i], reps[best], values[i], values[best], forced, downward))
-                    best = i;
+                arcs.push_back(a);
+                roots.push_back(r);
             }
-            cont[x] = arcs[best];
-            rep[x] = reps[best];
-            for (std::size_t i = 0; i < arcs.size(); ++i)
-                if (i != best)
-                    ending_.push_back({downward ? BranchKind::Minimum : BranchKind::Maximum, reps[i], x,
-                                       arcs[i], rows[i], values[i]});
+            if (roots.empty())
+                continue; // an extremum of the sweep starts its component
+            std::size_t best = 0;
+            if (roots.size() > 1) {
+                rows.clear();
+                for (std::size_t i = 0; i < roots.size(); ++i) {
+                    const uint32_t rep = comp.rep(roots[i]);
+                    rows.push_back(rep == forced ? root_ : measures_of(x, arcs[i], rep, join));
+                }
+                values.assign(rows.size(), 0.0);
+                importance_(rows, values);
+                for (std::size_t i = 0; i < roots.size(); ++i) {
+                    if (comp.rep(roots[i]) != forced && (!std::isfinite(values[i]) || values[i] < 0.0))
+                        throw std::invalid_argument(
+                            "the importance function returned " + std::to_string(values[i]) +
+                            " for a branch (persistence " + std::to_string(rows[i].absolute[kPersistence]) +
+                            ", volume " + std::to_string(rows[i].absolute[kVolume]) +
+                            "); importance must be a finite number >= 0");
+                    if (i != best && continues_instead(comp.rep(roots[i]), comp.rep(roots[best]), values[i],
+                                                       values[best], forced, join))
+                        best = i;
+                }
+                for (std::size_t i = 0; i < roots.size(); ++i)
+                    if (i != best)
+                        ending_.push_back({join ? BranchKind::Minimum : BranchKind::Maximum, comp.rep(roots[i]), x,
+                                           rows[i], values[i]});
+            }
+            const uint32_t survivor = comp.rep(roots[best]);
+            for (uint32_t r : roots)
+                comp.join(r, x, survivor);
         }
     }
 
     // True when candidate a should continue instead of b.
-    static bool older_wins(uint32_t a, uint32_t b, double ia, double ib, uint32_t forced, bool downward)
+    static bool continues_instead(uint32_t a, uint32_t b, double ia, double ib, uint32_t forced, bool join)
     {
         if (b == forced)
             return false;
@@ -206,60 +221,43 @@ private:
             return ia > ib;
         // Equal importance: the older extremum continues (node indices follow
         // the simulated order: lower is older for minima, higher for maxima).
-        return downward ? a < b : a > b;
+        return join ? a < b : a > b;
     }
 
     BranchDecomposition assemble()
     {
         const std::size_t nodes = tree_.node_count();
+        const std::size_t total = ending_.size() + 1;
         BranchDecomposition out;
         out.global_min = f_min_;
         out.global_max = f_max_;
         out.arc_branch.assign(tree_.arc_count(), kNoArc);
-        out.node_branch.assign(nodes, kNoArc);
-
         // Provisional ids: 0 for the root, i + 1 for ending_[i].
-        const auto walk = [&](uint32_t id, uint32_t from, uint32_t arc, bool downward) {
-            uint32_t x = from;
-            uint32_t a = arc;
-            while (a != kNoArc) {
-                if (out.arc_branch[a] != kNoArc)
-                    throw std::logic_error("contour tree arc " + std::to_string(a) + " lies on two branches");
-                out.arc_branch[a] = id;
-                x = far_end(a, x);
-                a = downward ? cont_down_[x] : cont_up_[x];
-            }
-        };
-        if (tree_.arc_count() > 0)
-            walk(0, gmin_, cont_up_[gmin_], /*downward=*/false);
-        for (uint32_t i = 0; i < ending_.size(); ++i)
-            walk(i + 1, ending_[i].saddle, ending_[i].arc, ending_[i].kind == BranchKind::Minimum);
+        const std::vector<uint32_t> parent = assign_arcs(out.arc_branch);
 
-        for (uint32_t a = 0; a < out.arc_branch.size(); ++a)
-            if (out.arc_branch[a] == kNoArc)
-                throw std::logic_error("contour tree arc " + std::to_string(a) + " lies on no branch");
-        // Parent of a branch ending at s: the branch continuing through s.
-        std::vector<int64_t> parent(ending_.size() + 1, -1);
-        for (uint32_t i = 0; i < ending_.size(); ++i) {
-            const uint32_t s = ending_[i].saddle;
-            const uint32_t through = cont_down_[s] != kNoArc ? cont_down_[s] : cont_up_[s];
-            parent[i + 1] = out.arc_branch[through];
-        }
         // Order: breadth first from the root, so parents come first.
-        std::vector<std::vector<uint32_t>> kids(ending_.size() + 1);
-        for (uint32_t b = 1; b <= ending_.size(); ++b)
-            kids[static_cast<std::size_t>(parent[b])].push_back(b);
-        std::vector<uint32_t> order{0}, final_id(ending_.size() + 1, 0);
+        std::vector<uint32_t> kid_offsets(total + 1, 0), kids(ending_.size());
+        for (uint32_t b = 1; b < total; ++b)
+            ++kid_offsets[parent[b] + 1];
+        for (std::size_t b = 0; b < total; ++b)
+            kid_offsets[b + 1] += kid_offsets[b];
+        {
+            std::vector<uint32_t> fill(kid_offsets.begin(), kid_offsets.end() - 1);
+            for (uint32_t b = 1; b < total; ++b)
+                kids[fill[parent[b]]++] = b;
+        }
+        std::vector<uint32_t> order{0}, final_id(total, 0);
+        order.reserve(total);
         for (std::size_t k = 0; k < order.size(); ++k)
-            for (uint32_t c : kids[order[k]])
-                order.push_back(c);
-        if (order.size() != ending_.size() + 1)
+            for (uint32_t i = kid_offsets[order[k]]; i < kid_offsets[order[k] + 1]; ++i)
+                order.push_back(kids[i]);
+        if (order.size() != total)
             throw std::logic_error("branch hierarchy is not a tree");
         for (uint32_t k = 0; k < order.size(); ++k)
             final_id[order[k]] = k;
 
-        out.branches.resize(order.size());
-        for (uint32_t k = 0; k < order.size(); ++k) {
+        out.branches.resize(total);
+        for (uint32_t k = 0; k < total; ++k) {
             const uint32_t b = order[k];
             Branch &br = out.branches[k];
             if (b == 0) {
@@ -268,68 +266,109 @@ private:
                 br.saddle_node = gmin_;
                 br.measures = root_;
                 br.importance = std::numeric_limits<double>::infinity();
-            } else {
-                const EndingBranch &e = ending_[b - 1];
-                br.kind = e.kind;
-                br.extremum_node = e.extremum;
-                br.saddle_node = e.saddle;
-                br.measures = e.measures;
-                br.importance = e.importance;
-                br.parent = static_cast<int32_t>(final_id[static_cast<std::size_t>(parent[b])]);
-                Branch &p = out.branches[static_cast<std::size_t>(br.parent)];
-                br.depth = p.depth + 1;
-                p.children.push_back(k);
+                continue;
             }
+            const EndingBranch &e = ending_[b - 1];
+            br.kind = e.kind;
+            br.extremum_node = e.extremum;
+            br.saddle_node = e.saddle;
+            br.measures = e.measures;
+            br.importance = e.importance;
+            br.parent = static_cast<int32_t>(final_id[parent[b]]);
+            Branch &p = out.branches[static_cast<std::size_t>(br.parent)];
+            br.depth = p.depth + 1;
+            p.children.push_back(k);
         }
         for (uint32_t &id : out.arc_branch)
             id = final_id[id];
-        for (uint32_t x = 0; x < nodes; ++x) {
-            const uint32_t a = cont_down_[x] != kNoArc ? cont_down_[x] : cont_up_[x];
-            out.node_branch[x] = a == kNoArc ? 0 : out.arc_branch[a];
-        }
-        measure_regions(out);
+        // A node goes with the arc rootwards of it (towards the global
+        // minimum): for a saddle, the branch that goes on through it.
+        out.node_branch.assign(nodes, 0);
+        const std::vector<uint32_t> &up = regions_.parent_arc();
+        for (uint32_t x = 0; x < nodes; ++x)
+            out.node_branch[x] = up[x] == kNoArc ? 0 : out.arc_branch[up[x]];
         return out;
     }
 
-    // Final measures from the hierarchy: a branch's region is its own arcs
-    // and nodes, its descendants' regions, and its saddle.  Where every
-    // branch region is one side of its saddle (always, except around flat
-    // plateaus split by simulation of simplicity) this equals the side
-    // measured for the decision.
-    void measure_regions(BranchDecomposition &out) const
+    // Which branch owns each arc (provisional ids), and each branch's parent.
+    //
+    // The root owns the tree path from the global minimum to the global
+    // maximum; every other branch, in decreasing importance, the arcs of the
+    // tree path from its extremum to its saddle that no more important branch
+    // owns.  Where the pairs form a branch decomposition (every volume of the
+    // shared data) these paths are disjoint monotone paths and this is exactly
+    // that decomposition.  In the rare trees where no monotone decomposition
+    // realises the pairs (1 x 1 x n strips, the 3 x 2 plane 5 1 4 / 2 3 0 whose
+    // global extrema no monotone path joins), paths overlap and the more
+    // important branch keeps the shared arcs; pairs and measures stay the
+    // elder rule's.
+    //
+    // A branch's parent owns the arc just rootwards of the branch's rootmost
+    // arc, so the rootmost depth falls along every parent chain: a tree.
+    std::vector<uint32_t> assign_arcs(std::vector<uint32_t> &owner) const
     {
-        const std::size_t branches = out.branches.size();
-        std::vector<double> count(branches, 0.0), sum(branches, 0.0);
-        for (uint32_t a = 0; a < out.arc_branch.size(); ++a) {
-            count[out.arc_branch[a]] += regions_.arc_count(a);
-            sum[out.arc_branch[a]] += regions_.arc_sum(a);
+        const std::vector<uint32_t> &up = regions_.parent_arc();
+        const std::vector<uint32_t> &depth = regions_.depth();
+        const std::size_t total = ending_.size() + 1;
+        const auto arc_depth = [&](uint32_t a) { return std::max(depth[tree_.arc_lo[a]], depth[tree_.arc_hi[a]]); };
+        std::vector<uint32_t> top_arc(total, kNoArc), first_arc(total, kNoArc);
+        const auto claim = [&](uint32_t a, uint32_t id) {
+            if (owner[a] != kNoArc)
+                return;
+            owner[a] = id;
+            if (top_arc[id] == kNoArc || arc_depth(a) < arc_depth(top_arc[id]))
+                top_arc[id] = a;
+        };
+        const auto claim_path = [&](uint32_t from, uint32_t to, uint32_t id) {
+            while (from != to) {
+                const bool from_side = depth[from] >= depth[to];
+                uint32_t &deeper = from_side ? from : to;
+                const uint32_t a = up[deeper];
+                if (from_side && first_arc[id] == kNoArc)
+                    first_arc[id] = a;
+                claim(a, id);
+                deeper = regions_.far_node(a, deeper);
+            }
+        };
+        claim_path(gmax_, gmin_, 0);
+        std::vector<uint32_t> by_importance(ending_.size());
+        for (uint32_t i = 0; i < by_importance.size(); ++i)
+            by_importance[i] = i;
+        std::stable_sort(by_importance.begin(), by_importance.end(),
+                         [&](uint32_t a, uint32_t b) { return ending_[a].importance > ending_[b].importance; });
+        for (uint32_t i : by_importance)
+            claim_path(ending_[i].extremum, ending_[i].saddle, i + 1);
+        // Arcs on no pair's path go with the arc rootwards of them.
+        for (uint32_t x : regions_.preorder()) {
+            const uint32_t a = up[x];
+            if (a == kNoArc || owner[a] != kNoArc)
+                continue;
+            const uint32_t rootwards = up[regions_.far_node(a, x)];
+            claim(a, rootwards == kNoArc ? 0 : owner[rootwards]);
         }
-        for (uint32_t x = 0; x < out.node_branch.size(); ++x) {
-            count[out.node_branch[x]] += 1.0;
-            sum[out.node_branch[x]] += regions_.node_value(x);
+        std::vector<uint32_t> parent(total, 0);
+        for (uint32_t id = 1; id < total; ++id) {
+            const uint32_t a = top_arc[id];
+            if (a == kNoArc) {
+                // Every arc of its path went to more important branches (an
+                // extremum that is also a saddle, like the inner extrema of a
+                // strip): it hangs off the owner of its first arc and, owning
+                // nothing, is nobody's parent.
+                parent[id] = first_arc[id] == kNoArc ? 0 : owner[first_arc[id]];
+                continue;
+            }
+            const uint32_t near = depth[tree_.arc_lo[a]] < depth[tree_.arc_hi[a]] ? tree_.arc_lo[a] : tree_.arc_hi[a];
+            parent[id] = up[near] == kNoArc ? 0 : owner[up[near]];
         }
-        for (std::size_t b = branches; b-- > 1;) {
-            const std::size_t p = static_cast<std::size_t>(out.branches[b].parent);
-            count[p] += count[b];
-            sum[p] += sum[b];
-        }
-        for (std::size_t b = 1; b < branches; ++b) {
-            Branch &br = out.branches[b];
-            const double saddle = regions_.node_value(br.saddle_node);
-            br.measures = make_measures(count[b] + 1.0, sum[b] + saddle, saddle,
-                                        regions_.node_value(br.extremum_node),
-                                        br.kind == BranchKind::Minimum);
-        }
+        return parent;
     }
 
     const ContourTree &tree_;
-    const FieldView &field_;
     const ImportanceFn &importance_;
     TreeRegions regions_;
     uint32_t gmin_ = 0, gmax_ = 0;
     double f_min_ = 0, f_max_ = 0, mm3_ = 1;
     BranchMeasures root_;
-    std::vector<uint32_t> cont_down_, cont_up_, rep_min_, rep_max_;
     std::vector<EndingBranch> ending_;
 };
 

@@ -1,25 +1,33 @@
 // branch_decomposition.hpp - the branch decomposition of a contour tree,
 // driven by an importance function, with the measures of every branch.
 //
-// A branch is a monotone path from an extremum to the saddle where it hangs
-// off its parent; the root branch joins the global minimum and the global
-// maximum.  The decomposition is decided saddle by saddle, upwards for the
-// arcs below saddles and downwards for the arcs above them: at a saddle where
-// several arcs meet on one side, the candidate branch on each of those arcs
-// (the extremum its continuing path reaches, and the region enclosed by its
-// contour at the saddle) is given its importance, the most important one
-// continues through the saddle, and every other one ends there and becomes a
-// child of the continuing branch.  This is the elder rule generalised from
-// persistence to any importance: with persistence it reproduces exactly the
-// pairs of the join and split trees (what TTK reports), and it is what
-// leaf pruning in order of importance produces whenever no leaf is blocked
-// behind a saddle of the other kind.  Ties go to the older extremum
-// (simulation of simplicity), the global minimum and maximum always continue.
+// A branch pairs an extremum with the saddle where it hangs off its parent;
+// the root branch joins the global minimum and the global maximum.  Pairs are
+// decided by the elder rule generalised from persistence to any importance,
+// on the join tree (minima, upwards) and the split tree (maxima, downwards),
+// both rebuilt from the contour tree: where two or more components of a
+// sublevel (superlevel) set meet at a saddle, each component is a candidate
+// branch - its representative extremum and the region its contour encloses at
+// the saddle - and the most important one continues while the others end
+// there.  With persistence this reproduces exactly the pairs TTK reports.
+// Ties go to the older extremum (simulation of simplicity); the global minimum
+// and maximum always continue.
+//
+// Each branch owns the contour-tree arcs of the path from its extremum to its
+// saddle; where these paths overlap (only in trees that have no monotone
+// branch decomposition realising the pairs, e.g. 1 x 1 x n strips) the more
+// important branch keeps the shared arcs.  Parents own the arc just rootwards
+// of their children.  Ownership drives label maps; pairs and measures do not
+// depend on it.
 //
 // Measures describe the region enclosed by a branch's contour at its saddle,
 // saddle included: everything beyond the saddle on the branch's side,
 // children and their children included.  They are sums over the contour tree's
 // augmentation (per-arc sums, then subtree sums), never a flood of the volume.
+// The relative hypervolume is the volume between the function and the saddle
+// level (see kRelativeHypervolume): the sum of |f - f(saddle)| over regions
+// that lie on one side of their saddle level, with pits inside a peak (bumps
+// inside a basin) counting against it.
 #pragma once
 
 #include "contour_tree.hpp"
@@ -39,7 +47,7 @@ enum Measure : int {
     kVolume,              // voxels in the region
     kVolumeMm3,           // the same in mm^3
     kHypervolume,         // sum over the region of f - f_min (global minimum)
-    kRelativeHypervolume, // sum over the region of |f - f(saddle)|
+    kRelativeHypervolume, // sum of f - f(saddle) (peak) or f(saddle) - f (basin), >= 0
     kMeasureCount
 };
 

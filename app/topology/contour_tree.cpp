@@ -244,34 +244,37 @@ ContourTree merge_contour_tree(MergeTree join, MergeTree split, arbor_voxel_type
     }
 
     // Nodes: every vertex that is not regular, in simulated-value order.
-    std::vector<uint32_t> nodes;
+    std::vector<uint32_t> by_vertex;
     for (uint32_t v = 0; v < n; ++v)
         if (!(state[v].cnt_up == 1 && state[v].cnt_down == 1))
-            nodes.push_back(v);
+            by_vertex.push_back(v);
+    std::vector<uint32_t> nodes = by_vertex;
     dispatch_voxel_type(type, [&](auto t) {
         using T = decltype(t);
         const T *f = static_cast<const T *>(values);
         std::sort(nodes.begin(), nodes.end(),
                   [f](uint32_t a, uint32_t b) { return f[a] < f[b] || (f[a] == f[b] && a < b); });
     });
-    ct.node_vertex = nodes;
-    ct.vertex_node.reserve(nodes.size());
+    // The split-tree links are no longer needed: they now hold node indices.
     for (uint32_t i = 0; i < nodes.size(); ++i) {
-        const VertexState &sv = state[nodes[i]];
+        VertexState &sv = state[nodes[i]];
+        sv.st_down = i;
         ct.node_up.push_back(sv.cnt_up);
         ct.node_down.push_back(sv.cnt_down);
         ct.node_kind.push_back(kind_of(sv.cnt_up, sv.cnt_down));
-        ct.vertex_node.emplace_back(nodes[i], i);
     }
-    std::sort(ct.vertex_node.begin(), ct.vertex_node.end());
+    ct.node_vertex = std::move(nodes);
+    ct.vertex_node.reserve(by_vertex.size());
+    for (uint32_t v : by_vertex)
+        ct.vertex_node.emplace_back(v, state[v].st_down);
 
     // Arcs in node terms, compacted (a dropped arc maps to its alias).
     std::vector<uint32_t> compact(arcs.size(), kNoArc);
     for (uint32_t i = 0; i < arcs.size(); ++i) {
         if (arcs[i].start == kNoVertex)
             continue;
-        const uint32_t s = static_cast<uint32_t>(ct.node_of_vertex(arcs[i].start));
-        const uint32_t e = static_cast<uint32_t>(ct.node_of_vertex(arcs[i].end));
+        const uint32_t s = state[arcs[i].start].st_down;
+        const uint32_t e = state[arcs[i].end].st_down;
         compact[i] = static_cast<uint32_t>(ct.arc_lo.size());
         ct.arc_lo.push_back(std::min(s, e)); // node indices follow the value order
         ct.arc_hi.push_back(std::max(s, e));

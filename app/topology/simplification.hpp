@@ -5,9 +5,10 @@
 // A removed branch's voxels go to its nearest kept ancestor; a kept branch
 // whose parent was removed hangs off that ancestor too.  The root is always
 // kept.  With a monotone importance (persistence, volume, ITri on relative
-// measures) children are never more important than their parents and a cut is
-// simply a subtree; the nearest-kept-ancestor rule makes every cut well
-// defined anyway.
+// measures) a child of the same kind as its parent is never more important
+// than it, but a child of the other kind can be (a deep pit inside a low
+// peak), so a cut need not be a subtree: the nearest-kept-ancestor rule makes
+// every cut well defined.
 #pragma once
 
 #include "branch_decomposition.hpp"

@@ -5,7 +5,6 @@
 #include "core/voxel_type.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <stdexcept>
 
 namespace arbor::topology {
@@ -53,8 +52,7 @@ TreeRegions::TreeRegions(const ContourTree &tree, const FieldView &field) : tree
         total_count_ += arc_count_[a];
         total_sum_ += arc_sum_[a];
     }
-    below_ = root_at(0);
-    above_ = root_at(static_cast<uint32_t>(nodes - 1));
+    root_at_minimum();
 }
 
 uint32_t TreeRegions::far_end(uint32_t arc, uint32_t from) const
@@ -62,19 +60,19 @@ uint32_t TreeRegions::far_end(uint32_t arc, uint32_t from) const
     return tree_.arc_lo[arc] == from ? tree_.arc_hi[arc] : tree_.arc_lo[arc];
 }
 
-TreeRegions::Rooted TreeRegions::root_at(uint32_t root) const
+void TreeRegions::root_at_minimum()
 {
     const std::size_t nodes = tree_.node_count();
-    Rooted r;
-    r.parent_arc.assign(nodes, kNoArc);
-    r.count.assign(nodes, 0.0);
-    r.sum.assign(nodes, 0.0);
+    parent_arc_.assign(nodes, kNoArc);
+    sub_count_.assign(nodes, 0.0);
+    sub_sum_.assign(nodes, 0.0);
     // Preorder by an explicit stack (trees of noisy data are deep).
-    std::vector<uint32_t> preorder;
+    std::vector<uint32_t> &preorder = preorder_;
     preorder.reserve(nodes);
-    std::vector<uint32_t> stack{root};
+    depth_.assign(nodes, 0);
+    std::vector<uint32_t> stack{0};
     std::vector<uint8_t> seen(nodes, 0);
-    seen[root] = 1;
+    seen[0] = 1;
     while (!stack.empty()) {
         const uint32_t x = stack.back();
         stack.pop_back();
@@ -85,7 +83,8 @@ TreeRegions::Rooted TreeRegions::root_at(uint32_t root) const
             if (seen[y])
                 continue;
             seen[y] = 1;
-            r.parent_arc[y] = a;
+            parent_arc_[y] = a;
+            depth_[y] = depth_[x] + 1;
             stack.push_back(y);
         }
     }
@@ -94,30 +93,31 @@ TreeRegions::Rooted TreeRegions::root_at(uint32_t root) const
     // Children before parents: each node adds itself, then hands its sums on.
     for (auto it = preorder.rbegin(); it != preorder.rend(); ++it) {
         const uint32_t x = *it;
-        r.count[x] += 1.0;
-        r.sum[x] += node_value_[x];
-        const uint32_t a = r.parent_arc[x];
+        sub_count_[x] += 1.0;
+        sub_sum_[x] += node_value_[x];
+        const uint32_t a = parent_arc_[x];
         if (a == kNoArc)
             continue;
         const uint32_t p = far_end(a, x);
-        r.count[p] += r.count[x] + arc_count_[a];
-        r.sum[p] += r.sum[x] + arc_sum_[a];
+        sub_count_[p] += sub_count_[x] + arc_count_[a];
+        sub_sum_[p] += sub_sum_[x] + arc_sum_[a];
     }
-    return r;
 }
 
 RegionSums TreeRegions::measure(const Side &s) const
 {
-    const bool down_side = tree_.arc_hi[s.arc] == s.saddle; // the region lies below the saddle
-    const Rooted &rooted = down_side ? below_ : above_;
     const uint32_t far = far_end(s.arc, s.saddle);
     RegionSums r;
-    if (rooted.parent_arc[far] != s.arc) {
-        r.toward_root = true;
-        return r;
+    if (parent_arc_[far] == s.arc) {
+        // The arc leads away from the root: the region is the subtree beyond.
+        r.count = 1.0 + arc_count_[s.arc] + sub_count_[far];
+        r.sum = node_value_[s.saddle] + arc_sum_[s.arc] + sub_sum_[far];
+    } else {
+        // The arc leads to the root: everything but the saddle's subtree,
+        // plus the saddle.
+        r.count = total_count_ - sub_count_[s.saddle] + 1.0;
+        r.sum = total_sum_ - sub_sum_[s.saddle] + node_value_[s.saddle];
     }
-    r.count = 1.0 + arc_count_[s.arc] + rooted.count[far];
-    r.sum = node_value_[s.saddle] + arc_sum_[s.arc] + rooted.sum[far];
     return r;
 }
 

@@ -1,13 +1,11 @@
 // tree_regions.hpp - voxel counts and value sums over the regions of a
 // contour tree, from its augmentation: the voxels of every arc, then subtree
-// sums in the tree rooted at the global minimum (for regions below saddles)
-// or at the global maximum (for regions above them).
+// sums in the tree rooted at the global minimum.
 //
 // The region of a side of a saddle s is the saddle plus everything beyond the
 // arc that leaves s on that side: the region enclosed by the contour through
-// s on that arc.  Rooting the tree at the global minimum puts every region
-// that can hang below a saddle away from the root, and rooting it at the global
-// maximum does the same for regions above; so a region is always a subtree.
+// s on that arc.  It is a subtree when the arc points away from the root, and
+// the rest of the tree (plus s) when it points towards it.
 #pragma once
 
 #include "contour_tree.hpp"
@@ -22,10 +20,6 @@ struct FieldView;
 struct RegionSums {
     double count = 0.0;
     double sum = 0.0; // of the stored values
-    // The side leads to the global extremum the tree is rooted at.  Its region
-    // is not a subtree: it holds the rest of the volume (such a side only
-    // arises where simulation of simplicity splits a flat plateau).
-    bool toward_root = false;
 };
 
 class TreeRegions {
@@ -36,6 +30,12 @@ public:
     // Interior voxels of an arc (its nodes excluded) and their value sum.
     double arc_count(uint32_t arc) const { return arc_count_[arc]; }
     double arc_sum(uint32_t arc) const { return arc_sum_[arc]; }
+    // The tree rooted at the global minimum (node 0): each node's arc towards
+    // the root (kNoArc for the root), its depth, and a preorder.
+    const std::vector<uint32_t> &parent_arc() const { return parent_arc_; }
+    const std::vector<uint32_t> &depth() const { return depth_; }
+    const std::vector<uint32_t> &preorder() const { return preorder_; }
+    uint32_t far_node(uint32_t arc, uint32_t from) const { return far_end(arc, from); }
     double total_count() const { return total_count_; }
     double total_sum() const { return total_sum_; }
 
@@ -46,24 +46,21 @@ public:
     };
 
     // Voxel count and value sum over the region of a side, in O(1) from the
-    // subtree sums.  Sides below their saddle (arc_hi == saddle) are measured
-    // in the tree rooted at the global minimum, sides above in the one rooted
-    // at the global maximum; a side that leads to that root is flagged.
+    // subtree sums.
     RegionSums measure(const Side &side) const;
 
 private:
-    struct Rooted {
-        std::vector<uint32_t> parent_arc;         // per node; kNoArc for the root
-        std::vector<double> count, sum; // subtree sums per node
-    };
-    Rooted root_at(uint32_t root) const;
     uint32_t far_end(uint32_t arc, uint32_t from) const;
+    void root_at_minimum();
 
     const ContourTree &tree_;
     std::vector<double> node_value_;
     std::vector<double> arc_count_, arc_sum_; // interior vertices only
     double total_count_ = 0.0, total_sum_ = 0.0;
-    Rooted below_, above_; // rooted at the global minimum / maximum
+    // Rooted at the global minimum: parent arc, depth and subtree sums per
+    // node, and a preorder.
+    std::vector<uint32_t> parent_arc_, depth_, preorder_;
+    std::vector<double> sub_count_, sub_sum_;
 };
 
 } // namespace arbor::topology

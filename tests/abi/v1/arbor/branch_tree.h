@@ -29,7 +29,10 @@
 #define ARBOR_MEASURE_VOLUME_MM3 "volume-mm3"   /* the same in mm^3 */
 /* Sum over the region of f - f_min (f_min: global minimum of the volume). */
 #define ARBOR_MEASURE_HYPERVOLUME "hypervolume"
-/* Sum over the region of |f - f(saddle)| (Carr's hypervolume). */
+/* Volume between f and the saddle level: the sum over the region of
+ * f - f(saddle) for a peak, f(saddle) - f for a basin, at least 0 (Carr's
+ * hypervolume).  It is the sum of |f - f(saddle)| unless the region holds pits
+ * below a peak's saddle level or bumps above a basin's, which count against it. */
 #define ARBOR_MEASURE_RELATIVE_HYPERVOLUME "relative-hypervolume"
 
 typedef uint32_t arbor_extremum_kind;
