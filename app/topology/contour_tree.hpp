@@ -65,8 +65,10 @@ inline constexpr std::size_t kMergeWorkBytes = 16;
 // Merges the two trees (consumed; the join tree's parent array becomes
 // vertex_arc).  `values` of voxel type `type` order the nodes.  `work`, when
 // given, holds at least kMergeWorkBytes per vertex and is used instead of a
-// fresh allocation.
+// fresh allocation.  `order`, the vertices lowest first, lets the merge
+// stream through the vertices instead of chasing links (optional).
 ContourTree merge_contour_tree(MergeTree join, MergeTree split, arbor_voxel_type type, const void *values,
-                               const ProgressFn &progress = {}, void *work = nullptr);
+                               const ProgressFn &progress = {}, void *work = nullptr,
+                               const uint32_t *order = nullptr);
 
 } // namespace arbor::topology

@@ -1,6 +1,6 @@
 #include "merge_tree.hpp"
 
-#include "core/voxel_type.hpp"
+#include <vector>
 
 namespace arbor::topology {
 
@@ -16,8 +16,8 @@ inline uint32_t find_root(uint32_t *uf, uint32_t x)
     return x;
 }
 
-template <bool Join, class T>
-MergeTree sweep(const GridNeighbors &grid, const T *f, const UninitializedBuffer<uint32_t> &order_buffer,
+template <bool Join>
+MergeTree sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order_buffer,
                 const ProgressFn &progress, const SweepScratch &scratch)
 {
     const uint32_t n = static_cast<uint32_t>(order_buffer.size());
@@ -32,20 +32,35 @@ MergeTree sweep(const GridNeighbors &grid, const T *f, const UninitializedBuffer
     uint32_t *u = scratch.uf;
     uint32_t *newest = scratch.top;
     uint8_t *h = scratch.height;
+    // A neighbour is lower (join) or higher (split) than the current vertex
+    // exactly when the sweep has already passed it: one bit per vertex says
+    // so.  The bits fit in cache where the values would not, which matters
+    // because consecutive vertices of the sweep lie anywhere in the volume.
+    std::vector<uint64_t> swept((n + 63) / 64, 0);
+    uint64_t *seen = swept.data();
     constexpr uint32_t kProgressStep = 1u << 20;
+    // The sweep order is known ahead: fetch the union-find entries around
+    // the vertex a few steps on, so that the misses of consecutive vertices
+    // overlap.
+    constexpr uint32_t kAhead = 16;
+    const int64_t row = grid.nx(), plane = grid.nx() * grid.ny();
+    const auto prefetch = [&](uint32_t at) {
+        const int64_t w = order[Join ? at : n - 1 - at];
+        for (const int64_t p : {w - plane, w, w + plane})
+            for (const int64_t r : {p - row, p, p + row})
+                if (r >= 0 && r < static_cast<int64_t>(n))
+                    __builtin_prefetch(u + r);
+    };
 
     for (uint32_t step = 0; step < n; ++step) {
+        if (step + kAhead < n)
+            prefetch(step + kAhead);
         const uint32_t v = order[Join ? step : n - 1 - step];
-        const T fv = f[v];
         uint32_t roots[14];
         int count = 0;
         grid.for_each(v, [&](int64_t neighbor) {
             const uint32_t w = static_cast<uint32_t>(neighbor);
-            // Simulation of simplicity: w was swept before v iff it is lower
-            // (join) or higher (split) by (value, id).
-            const bool before = Join ? (f[w] < fv || (f[w] == fv && w < v))
-                                     : (f[w] > fv || (f[w] == fv && w > v));
-            if (!before)
+            if (!((seen[w >> 6] >> (w & 63)) & 1u))
                 return;
             const uint32_t c = find_root(u, w);
             for (int i = 0; i < count; ++i)
@@ -53,6 +68,7 @@ MergeTree sweep(const GridNeighbors &grid, const T *f, const UninitializedBuffer
                     return;
             roots[count++] = c;
         });
+        seen[v >> 6] |= uint64_t{1} << (v & 63);
         children[v] = static_cast<uint8_t>(count);
         uint32_t root = v;
         if (count == 0) {
@@ -99,10 +115,9 @@ MergeTree sweep_any(const GridNeighbors &grid, arbor_voxel_type type, const void
         own = {uf.data(), top.data(), height.data()};
         scratch = &own;
     }
-    return dispatch_voxel_type(type, [&](auto t) {
-        using T = decltype(t);
-        return sweep<Join>(grid, static_cast<const T *>(values), order, progress, *scratch);
-    });
+    (void)type;
+    (void)values;
+    return sweep<Join>(grid, order, progress, *scratch);
 }
 
 } // namespace

@@ -103,12 +103,12 @@ TopologyResult compute_topology(const Volume &volume, const ImportanceFn &import
     split_thread.join();
     if (split_error)
         std::rethrow_exception(split_error);
-    order.release();
     result.timings.push_back({"join+split trees", watch.lap()});
 
     result.tree = merge_contour_tree(std::move(join), std::move(split), volume.type(), volume.data(),
-                                     report("merging trees"), scratch.data());
+                                     report("merging trees"), scratch.data(), order.data());
     scratch.release();
+    order.release();
     result.timings.push_back({"merge", watch.lap()});
 
     const FieldView field{volume.type(), volume.data(), n, &g};
