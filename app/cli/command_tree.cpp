@@ -227,10 +227,10 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
         j.raw(",");
         j.key("children");
         j.raw("[");
-        for (std::size_t c = 0; c < br.children.size(); ++c) {
-            if (c)
+        for (const uint32_t c : d.children(static_cast<uint32_t>(b))) {
+            if (c != d.child_offsets[b])
                 j.raw(",");
-            j.number(br.children[c]);
+            j.number(c);
         }
         j.raw("],");
         j.key("extremum");
@@ -240,10 +240,13 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
         write_point(j, t, vol, br.saddle_node);
         j.raw(",");
         j.key("measures");
-        write_measures(j, br.measures.absolute);
+        write_measures(j, br.measures);
         j.raw(",");
         j.key("relative_measures");
-        write_measures(j, br.measures.relative);
+        std::array<double, topology::kMeasureCount> relative;
+        for (int m = 0; m < topology::kMeasureCount; ++m)
+            relative[m] = d.relative(static_cast<uint32_t>(b), m);
+        write_measures(j, relative);
         j.raw(",");
         j.key("importance");
         j.number(std::isinf(br.importance) ? 1.0 : br.importance);

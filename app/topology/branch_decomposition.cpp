@@ -50,20 +50,12 @@ double voxel_volume(const Geometry &g)
     return std::fabs(det) * g.spacing[0] * g.spacing[1] * g.spacing[2];
 }
 
-// A branch that ends at a saddle, before the branches are ordered.
-struct EndingBranch {
-    BranchKind kind;
-    uint32_t extremum;
-    uint32_t saddle;
-    BranchMeasures measures;
-    double importance;
-};
-
 // Union-find over contour-tree nodes whose roots carry the representative
 // extremum of their component.
 class Components {
 public:
     explicit Components(std::size_t n) : parent_(n), rep_(n) {}
+    // Nodes enter by make(); a component's root is its most recent node.
     void make(uint32_t x)
     {
         parent_[x] = x;
@@ -86,7 +78,7 @@ public:
     }
 
 private:
-    std::vector<uint32_t> parent_, rep_;
+    HugeVector<uint32_t> parent_, rep_;
 };
 
 class Decomposer {
@@ -110,20 +102,34 @@ public:
 
     BranchDecomposition run(const ProgressFn &progress)
     {
-        sweep(/*join=*/true);
-        if (progress)
-            progress(0.4);
-        sweep(/*join=*/false);
-        if (progress)
-            progress(0.7);
-        return assemble();
+        // One branch per extremum but the global minimum, which the root
+        // shares with the global maximum.
+        std::size_t extrema = 0;
+        for (std::size_t x = 0; x < tree_.node_count(); ++x)
+            extrema += (tree_.node_up[x] == 0) + (tree_.node_down[x] == 0);
+        out_.branches.reserve(extrema);
+        Branch root;
+        root.extremum_node = gmax_;
+        root.saddle_node = gmin_;
+        root.importance = std::numeric_limits<double>::infinity();
+        root.measures = root_.absolute;
+        out_.branches.push_back(root);
+        {
+            Components comp(tree_.node_count());
+            sweep(/*join=*/true, comp);
+            if (progress)
+                progress(0.4);
+            sweep(/*join=*/false, comp);
+            if (progress)
+                progress(0.7);
+        }
+        regions_.release_sums();
+        assemble();
+        return std::move(out_);
     }
 
 private:
-    uint32_t far_end(uint32_t arc, uint32_t from) const
-    {
-        return tree_.arc_lo[arc] == from ? tree_.arc_hi[arc] : tree_.arc_lo[arc];
-    }
+    uint32_t far_end(uint32_t arc, uint32_t from) const { return regions_.far_node(arc, from); }
 
     BranchMeasures measures_of(uint32_t saddle, uint32_t arc, uint32_t extremum, bool basin) const
     {
@@ -154,10 +160,9 @@ private:
     // the component's arc.  The most important continues (the global extremum
     // of the sweep always does; equal importance: the older extremum), the
     // others end at the node.
-    void sweep(bool join)
+    void sweep(bool join, Components &comp)
     {
         const std::size_t nodes = tree_.node_count();
-        Components comp(nodes);
         const uint32_t forced = join ? gmin_ : gmax_;
         std::vector<uint32_t> arcs, roots;
         std::vector<BranchMeasures> rows;
@@ -199,10 +204,17 @@ private:
                                                        values[best], forced, join))
                         best = i;
                 }
-                for (std::size_t i = 0; i < roots.size(); ++i)
-                    if (i != best)
-                        ending_.push_back({join ? BranchKind::Minimum : BranchKind::Maximum, comp.rep(roots[i]), x,
-                                           rows[i], values[i]});
+                for (std::size_t i = 0; i < roots.size(); ++i) {
+                    if (i == best)
+                        continue;
+                    Branch b;
+                    b.kind = join ? BranchKind::Minimum : BranchKind::Maximum;
+                    b.extremum_node = comp.rep(roots[i]);
+                    b.saddle_node = x;
+                    b.importance = values[i];
+                    b.measures = rows[i].absolute;
+                    out_.branches.push_back(b);
+                }
             }
             const uint32_t survivor = comp.rep(roots[best]);
             for (uint32_t r : roots)
@@ -224,70 +236,71 @@ private:
         return join ? a < b : a > b;
     }
 
-    BranchDecomposition assemble()
+    // Orders the branches breadth first from the root and fills in parents,
+    // depths, children and the owner of every arc and node.
+    void assemble()
     {
-        const std::size_t nodes = tree_.node_count();
-        const std::size_t total = ending_.size() + 1;
-        BranchDecomposition out;
-        out.global_min = f_min_;
-        out.global_max = f_max_;
-        out.arc_branch.assign(tree_.arc_count(), kNoArc);
-        // Provisional ids: 0 for the root, i + 1 for ending_[i].
-        const std::vector<uint32_t> parent = assign_arcs(out.arc_branch);
+        HugeVector<Branch> &branches = out_.branches;
+        const std::size_t total = branches.size();
+        out_.global_min = f_min_;
+        out_.global_max = f_max_;
+        out_.arc_branch.assign(tree_.arc_count(), kNoArc);
+        // Provisional ids: the sweeps' order.
+        HugeVector<uint32_t> parent = assign_arcs(out_.arc_branch);
 
-        // Order: breadth first from the root, so parents come first.
-        std::vector<uint32_t> kid_offsets(total + 1, 0), kids(ending_.size());
-        for (uint32_t b = 1; b < total; ++b)
-            ++kid_offsets[parent[b] + 1];
-        for (std::size_t b = 0; b < total; ++b)
-            kid_offsets[b + 1] += kid_offsets[b];
+        // Breadth first from the root, so parents come first and siblings
+        // are consecutive.
+        HugeVector<uint32_t> final_id(total, 0);
         {
-            std::vector<uint32_t> fill(kid_offsets.begin(), kid_offsets.end() - 1);
+            HugeVector<uint32_t> kid_offsets(total + 1, 0), kids(total - 1);
             for (uint32_t b = 1; b < total; ++b)
-                kids[fill[parent[b]]++] = b;
-        }
-        std::vector<uint32_t> order{0}, final_id(total, 0);
-        order.reserve(total);
-        for (std::size_t k = 0; k < order.size(); ++k)
-            for (uint32_t i = kid_offsets[order[k]]; i < kid_offsets[order[k] + 1]; ++i)
-                order.push_back(kids[i]);
-        if (order.size() != total)
-            throw std::logic_error("branch hierarchy is not a tree");
-        for (uint32_t k = 0; k < order.size(); ++k)
-            final_id[order[k]] = k;
-
-        out.branches.resize(total);
-        for (uint32_t k = 0; k < total; ++k) {
-            const uint32_t b = order[k];
-            Branch &br = out.branches[k];
-            if (b == 0) {
-                br.kind = BranchKind::Root;
-                br.extremum_node = gmax_;
-                br.saddle_node = gmin_;
-                br.measures = root_;
-                br.importance = std::numeric_limits<double>::infinity();
-                continue;
+                ++kid_offsets[parent[b] + 1];
+            for (std::size_t b = 0; b < total; ++b)
+                kid_offsets[b + 1] += kid_offsets[b];
+            {
+                HugeVector<uint32_t> fill(kid_offsets.begin(), kid_offsets.end() - 1);
+                for (uint32_t b = 1; b < total; ++b)
+                    kids[fill[parent[b]]++] = b;
             }
-            const EndingBranch &e = ending_[b - 1];
-            br.kind = e.kind;
-            br.extremum_node = e.extremum;
-            br.saddle_node = e.saddle;
-            br.measures = e.measures;
-            br.importance = e.importance;
-            br.parent = static_cast<int32_t>(final_id[parent[b]]);
-            Branch &p = out.branches[static_cast<std::size_t>(br.parent)];
-            br.depth = p.depth + 1;
-            p.children.push_back(k);
+            HugeVector<uint32_t> order;
+            order.reserve(total);
+            order.push_back(0);
+            for (std::size_t k = 0; k < order.size(); ++k)
+                for (uint32_t i = kid_offsets[order[k]]; i < kid_offsets[order[k] + 1]; ++i)
+                    order.push_back(kids[i]);
+            if (order.size() != total)
+                throw std::logic_error("branch hierarchy is not a tree");
+            for (uint32_t k = 0; k < total; ++k)
+                final_id[order[k]] = k;
         }
-        for (uint32_t &id : out.arc_branch)
+        for (uint32_t b = 1; b < total; ++b)
+            branches[b].parent = static_cast<int32_t>(final_id[parent[b]]);
+        parent = {};
+        for (uint32_t &id : out_.arc_branch)
             id = final_id[id];
+        // Into the final order in place, one cycle of the permutation at a time.
+        for (uint32_t i = 0; i < total; ++i)
+            while (final_id[i] != i) {
+                const uint32_t j = final_id[i];
+                std::swap(branches[i], branches[j]);
+                std::swap(final_id[i], final_id[j]);
+            }
+        final_id = {};
+        out_.child_offsets.assign(total + 1, 0);
+        out_.child_offsets[0] = 1;
+        for (uint32_t k = 1; k < total; ++k) {
+            const auto p = static_cast<uint32_t>(branches[k].parent);
+            branches[k].depth = branches[p].depth + 1;
+            ++out_.child_offsets[p + 1];
+        }
+        for (std::size_t b = 0; b < total; ++b)
+            out_.child_offsets[b + 1] += out_.child_offsets[b];
         // A node goes with the arc rootwards of it (towards the global
         // minimum): for a saddle, the branch that goes on through it.
-        out.node_branch.assign(nodes, 0);
-        const std::vector<uint32_t> &up = regions_.parent_arc();
-        for (uint32_t x = 0; x < nodes; ++x)
-            out.node_branch[x] = up[x] == kNoArc ? 0 : out.arc_branch[up[x]];
-        return out;
+        const HugeVector<uint32_t> &up = regions_.parent_arc();
+        out_.node_branch.resize(tree_.node_count());
+        for (uint32_t x = 0; x < tree_.node_count(); ++x)
+            out_.node_branch[x] = up[x] == kNoArc ? 0 : out_.arc_branch[up[x]];
     }
 
     // Which branch owns each arc (provisional ids), and each branch's parent.
@@ -305,13 +318,14 @@ private:
     //
     // A branch's parent owns the arc just rootwards of the branch's rootmost
     // arc, so the rootmost depth falls along every parent chain: a tree.
-    std::vector<uint32_t> assign_arcs(std::vector<uint32_t> &owner) const
+    HugeVector<uint32_t> assign_arcs(HugeVector<uint32_t> &owner) const
     {
-        const std::vector<uint32_t> &up = regions_.parent_arc();
-        const std::vector<uint32_t> &depth = regions_.depth();
-        const std::size_t total = ending_.size() + 1;
+        const HugeVector<Branch> &branches = out_.branches;
+        const HugeVector<uint32_t> &up = regions_.parent_arc();
+        const HugeVector<uint32_t> &depth = regions_.depth();
+        const std::size_t total = branches.size();
         const auto arc_depth = [&](uint32_t a) { return std::max(depth[tree_.arc_lo[a]], depth[tree_.arc_hi[a]]); };
-        std::vector<uint32_t> top_arc(total, kNoArc), first_arc(total, kNoArc);
+        HugeVector<uint32_t> top_arc(total, kNoArc), first_arc(total, kNoArc);
         const auto claim = [&](uint32_t a, uint32_t id) {
             if (owner[a] != kNoArc)
                 return;
@@ -327,26 +341,30 @@ private:
                 if (from_side && first_arc[id] == kNoArc)
                     first_arc[id] = a;
                 claim(a, id);
-                deeper = regions_.far_node(a, deeper);
+                deeper = far_end(a, deeper);
             }
         };
         claim_path(gmax_, gmin_, 0);
-        std::vector<uint32_t> by_importance(ending_.size());
-        for (uint32_t i = 0; i < by_importance.size(); ++i)
-            by_importance[i] = i;
-        std::stable_sort(by_importance.begin(), by_importance.end(),
-                         [&](uint32_t a, uint32_t b) { return ending_[a].importance > ending_[b].importance; });
-        for (uint32_t i : by_importance)
-            claim_path(ending_[i].extremum, ending_[i].saddle, i + 1);
+        {
+            // Most important first; equal importance: in the sweeps' order.
+            HugeVector<std::pair<double, uint32_t>> by_importance(total - 1);
+            for (uint32_t id = 1; id < total; ++id)
+                by_importance[id - 1] = {branches[id].importance, id};
+            std::sort(by_importance.begin(), by_importance.end(), [](const auto &a, const auto &b) {
+                return a.first != b.first ? a.first > b.first : a.second < b.second;
+            });
+            for (const auto &[importance, id] : by_importance)
+                claim_path(branches[id].extremum_node, branches[id].saddle_node, id);
+        }
         // Arcs on no pair's path go with the arc rootwards of them.
         for (uint32_t x : regions_.preorder()) {
             const uint32_t a = up[x];
             if (a == kNoArc || owner[a] != kNoArc)
                 continue;
-            const uint32_t rootwards = up[regions_.far_node(a, x)];
+            const uint32_t rootwards = up[far_end(a, x)];
             claim(a, rootwards == kNoArc ? 0 : owner[rootwards]);
         }
-        std::vector<uint32_t> parent(total, 0);
+        HugeVector<uint32_t> parent(total, 0);
         for (uint32_t id = 1; id < total; ++id) {
             const uint32_t a = top_arc[id];
             if (a == kNoArc) {
@@ -369,7 +387,7 @@ private:
     uint32_t gmin_ = 0, gmax_ = 0;
     double f_min_ = 0, f_max_ = 0, mm3_ = 1;
     BranchMeasures root_;
-    std::vector<EndingBranch> ending_;
+    BranchDecomposition out_;
 };
 
 } // namespace

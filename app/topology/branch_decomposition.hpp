@@ -37,6 +37,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <ranges>
 #include <string>
 #include <vector>
 
@@ -74,19 +75,30 @@ struct Branch {
     uint32_t saddle_node = 0;   // the global minimum for the root
     int32_t parent = -1;
     uint32_t depth = 0;
-    std::vector<uint32_t> children;
-    BranchMeasures measures;
     double importance = 0.0; // +infinity for the root
+    std::array<double, kMeasureCount> measures{}; // absolute; relative ones: BranchDecomposition::relative
 };
 
 struct BranchDecomposition {
-    // Root first; every parent before its children.
-    std::vector<Branch> branches;
+    // Root first, then breadth first: every parent before its children, and
+    // the children of a branch consecutive.
+    HugeVector<Branch> branches;
+    // The children of branch b are branches child_offsets[b] ..
+    // child_offsets[b + 1] - 1.
+    HugeVector<uint32_t> child_offsets;
     // Branch of every contour-tree arc and node (a saddle belongs to the
     // branch that continues through it, an extremum to its own branch).
-    std::vector<uint32_t> arc_branch;
-    std::vector<uint32_t> node_branch;
+    HugeVector<uint32_t> arc_branch;
+    HugeVector<uint32_t> node_branch;
     double global_min = 0.0, global_max = 0.0;
+
+    auto children(uint32_t b) const { return std::views::iota(child_offsets[b], child_offsets[b + 1]); }
+    // A measure of branch b relative to the root's (0 when the root's is 0).
+    double relative(uint32_t b, int measure) const
+    {
+        const double root = branches[0].measures[measure];
+        return root > 0 ? branches[b].measures[measure] / root : 0.0;
+    }
 };
 
 // The value of every vertex as a double, and the grid's geometry.

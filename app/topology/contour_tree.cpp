@@ -1,10 +1,8 @@
 #include "contour_tree.hpp"
 
-#include "core/voxel_type.hpp"
-
 #include <algorithm>
-#include <numeric>
 #include <stdexcept>
+#include <string>
 
 namespace arbor::topology {
 
@@ -19,12 +17,6 @@ const char *node_kind_name(NodeKind kind)
     case NodeKind::Lone: return "lone";
     }
     return "?";
-}
-
-int64_t ContourTree::node_of_vertex(uint32_t vertex) const
-{
-    const auto it = std::lower_bound(vertex_node.begin(), vertex_node.end(), std::make_pair(vertex, 0u));
-    return it != vertex_node.end() && it->first == vertex ? static_cast<int64_t>(it->second) : -1;
 }
 
 namespace {
@@ -53,7 +45,8 @@ constexpr uint8_t kRemoved = 0xff;
 // arc that reached it; an edge leaving a node starts a new arc.
 class LeafPruning {
 public:
-    LeafPruning(VertexState *state, uint32_t n) : n_(n), s_(state) {}
+    // `arcs` bounds the number of arcs (the number of nodes).
+    LeafPruning(VertexState *state, uint32_t n, std::size_t arcs) : n_(n), s_(state) { arcs_.reserve(arcs); }
 
     void run(const ProgressFn &progress, const uint32_t *order)
     {
@@ -71,24 +64,22 @@ public:
         // in the pass, and the pass order is known ahead, so memory is read
         // in a prefetchable stream instead of by chasing parent links.  Most
         // vertices go in the first passes; the stack finishes the rest.
-        if (order) {
-            constexpr int kPasses = 4;
-            constexpr uint32_t kAhead = 16;
-            for (int pass = 0; pass < kPasses && remaining > 1; ++pass) {
-                const bool downward = pass % 2 == 0;
-                const uint32_t before = remaining;
-                for (uint32_t i = 0; i < n_ && remaining > 1; ++i) {
-                    const uint32_t r = downward ? n_ - 1 - i : i;
-                    if (i + kAhead < n_)
-                        __builtin_prefetch(&s_[order[downward ? r - kAhead : r + kAhead]]);
-                    if (remove_if_leaf(order[r], nullptr)) {
-                        --remaining;
-                        report();
-                    }
+        constexpr int kPasses = 4;
+        constexpr uint32_t kAhead = 16;
+        for (int pass = 0; pass < kPasses && remaining > 1; ++pass) {
+            const bool downward = pass % 2 == 0;
+            const uint32_t before = remaining;
+            for (uint32_t i = 0; i < n_ && remaining > 1; ++i) {
+                const uint32_t r = downward ? n_ - 1 - i : i;
+                if (i + kAhead < n_)
+                    __builtin_prefetch(&s_[order[downward ? r - kAhead : r + kAhead]]);
+                if (remove_if_leaf(order[r], nullptr)) {
+                    --remaining;
+                    report();
                 }
-                if (remaining == before)
-                    break;
             }
+            if (remaining == before)
+                break;
         }
         std::vector<uint32_t> stack;
         for (uint32_t v = 0; v < n_; ++v)
@@ -131,9 +122,8 @@ public:
 
     struct Arc {
         uint32_t start, end;
-        bool downward;
     };
-    std::vector<Arc> &arcs() { return arcs_; }
+    HugeVector<Arc> take_arcs() { return std::move(arcs_); }
     uint32_t last() const { return last_; }
 
 private:
@@ -202,7 +192,7 @@ private:
             if (sv.cnt_up + sv.cnt_down > 0)
                 close_pending(v);
             arc = static_cast<uint32_t>(arcs_.size());
-            arcs_.push_back({v, kNoVertex, downward});
+            arcs_.push_back({v, kNoVertex});
         }
         sv.label = arc;
         if (downward) {
@@ -220,7 +210,7 @@ private:
 
     uint32_t n_;
     VertexState *s_;
-    std::vector<Arc> arcs_;
+    HugeVector<Arc> arcs_;
     uint32_t last_ = 0;
 };
 
@@ -239,71 +229,76 @@ NodeKind kind_of(uint8_t up, uint8_t down)
 
 } // namespace
 
-ContourTree merge_contour_tree(MergeTree join, MergeTree split, arbor_voxel_type type, const void *values,
-                               const ProgressFn &progress, void *work, const uint32_t *order)
+ContourTree merge_contour_tree(MergeTree join, MergeTree split, UninitializedBuffer<uint32_t> order,
+                               const ProgressFn &progress, UninitializedBuffer<uint8_t> work)
 {
     const uint32_t n = static_cast<uint32_t>(join.parent.size());
     ContourTree ct;
     if (n == 0)
         return ct;
-    UninitializedBuffer<VertexState> own;
-    VertexState *state = static_cast<VertexState *>(work);
-    if (!state) {
-        own = UninitializedBuffer<VertexState>(n);
-        state = own.data();
-    }
-    for (uint32_t v = 0; v < n; ++v)
+    if (split.parent.size() != n || order.size() != n)
+        throw std::invalid_argument("merge_contour_tree: the trees and the vertex order differ in size");
+    if (work.size() < std::size_t{n} * kMergeWorkBytes)
+        work = UninitializedBuffer<uint8_t>(std::size_t{n} * kMergeWorkBytes);
+    VertexState *state = reinterpret_cast<VertexState *>(work.data());
+    // The contour tree's down-degrees are the join tree's, its up-degrees
+    // the split tree's: its nodes are known before the merge.
+    std::size_t node_count = 0;
+    for (uint32_t v = 0; v < n; ++v) {
         state[v] = {join.parent[v], split.parent[v], 0, join.children[v], split.children[v], 0, 0};
+        node_count += join.children[v] != 1 || split.children[v] != 1;
+    }
     split = MergeTree{};
     join.children.release();
 
-    LeafPruning pruning(state, n);
-    pruning.run(progress, order);
-    auto &arcs = pruning.arcs();
+    LeafPruning pruning(state, n, node_count);
+    pruning.run(progress, order.data());
+    HugeVector<LeafPruning::Arc> arcs = pruning.take_arcs();
 
     // The merge may end on a regular vertex (one edge from each side): the
     // two arcs that meet there are one.
-    std::vector<uint32_t> arc_alias(arcs.size());
-    std::iota(arc_alias.begin(), arc_alias.end(), 0u);
     const uint32_t z = pruning.last();
+    uint32_t dropped = kNoArc, kept = kNoArc;
     if (state[z].cnt_up == 1 && state[z].cnt_down == 1) {
-        uint32_t a = kNoArc, b = kNoArc;
         for (uint32_t i = 0; i < arcs.size(); ++i)
             if (arcs[i].end == z)
-                (a == kNoArc ? a : b) = i;
-        // Arc a now runs from its start through z to b's start.
-        arcs[a].end = arcs[b].start;
-        arc_alias[b] = a;
-        arcs[b].start = arcs[b].end = kNoVertex; // dropped
+                (kept == kNoArc ? kept : dropped) = i;
+        // Arc `kept` now runs from its start through z to the other's start.
+        arcs[kept].end = arcs[dropped].start;
+        arcs[dropped].start = arcs[dropped].end = kNoVertex;
     }
 
-    // Nodes: every vertex that is not regular, in simulated-value order.
-    std::vector<uint32_t> by_vertex;
-    for (uint32_t v = 0; v < n; ++v)
-        if (!(state[v].cnt_up == 1 && state[v].cnt_down == 1))
-            by_vertex.push_back(v);
-    std::vector<uint32_t> nodes = by_vertex;
-    dispatch_voxel_type(type, [&](auto t) {
-        using T = decltype(t);
-        const T *f = static_cast<const T *>(values);
-        std::sort(nodes.begin(), nodes.end(),
-                  [f](uint32_t a, uint32_t b) { return f[a] < f[b] || (f[a] == f[b] && a < b); });
-    });
-    // The split-tree links are no longer needed: they now hold node indices.
-    for (uint32_t i = 0; i < nodes.size(); ++i) {
-        VertexState &sv = state[nodes[i]];
-        sv.st_down = i;
+    // Nodes: every vertex that is not regular, listed by streaming the
+    // sorted order.  The split-tree links are no longer needed: they now
+    // hold node indices.
+    ct.node_vertex.reserve(node_count);
+    ct.node_up.reserve(node_count);
+    ct.node_down.reserve(node_count);
+    ct.node_kind.reserve(node_count);
+    constexpr uint32_t kAhead = 16;
+    for (uint32_t i = 0; i < n; ++i) {
+        if (i + kAhead < n)
+            __builtin_prefetch(&state[order[i + kAhead]]);
+        const uint32_t v = order[i];
+        VertexState &sv = state[v];
+        if (sv.cnt_up == 1 && sv.cnt_down == 1)
+            continue;
+        sv.st_down = static_cast<uint32_t>(ct.node_vertex.size());
+        ct.node_vertex.push_back(v);
         ct.node_up.push_back(sv.cnt_up);
         ct.node_down.push_back(sv.cnt_down);
         ct.node_kind.push_back(kind_of(sv.cnt_up, sv.cnt_down));
     }
-    ct.node_vertex = std::move(nodes);
-    ct.vertex_node.reserve(by_vertex.size());
-    for (uint32_t v : by_vertex)
-        ct.vertex_node.emplace_back(v, state[v].st_down);
+    order.release();
+    if (ct.node_vertex.size() != node_count)
+        throw std::logic_error("contour tree merge found " + std::to_string(ct.node_vertex.size()) +
+                               " nodes where the merge trees have " + std::to_string(node_count));
 
-    // Arcs in node terms, compacted (a dropped arc maps to its alias).
-    std::vector<uint32_t> compact(arcs.size(), kNoArc);
+    // Arcs in node terms, compacted (the dropped arc maps to the one it
+    // joined).
+    HugeVector<uint32_t> compact(arcs.size(), kNoArc);
+    ct.arc_lo.reserve(arcs.size());
+    ct.arc_hi.reserve(arcs.size());
     for (uint32_t i = 0; i < arcs.size(); ++i) {
         if (arcs[i].start == kNoVertex)
             continue;
@@ -313,9 +308,16 @@ ContourTree merge_contour_tree(MergeTree join, MergeTree split, arbor_voxel_type
         ct.arc_lo.push_back(std::min(s, e)); // node indices follow the value order
         ct.arc_hi.push_back(std::max(s, e));
     }
-    for (uint32_t i = 0; i < arcs.size(); ++i)
-        if (compact[i] == kNoArc)
-            compact[i] = compact[arc_alias[i]];
+    if (dropped != kNoArc)
+        compact[dropped] = compact[kept];
+    arcs = {};
+
+    // Augmentation, into the join tree's parent array (no longer needed).
+    ct.vertex_arc = std::move(join.parent);
+    for (uint32_t v = 0; v < n; ++v)
+        ct.vertex_arc[v] = compact.empty() ? kNoArc : compact[state[v].label];
+    work.release();
+    compact = {};
 
     // Incidence lists.
     const std::size_t count = ct.node_vertex.size();
@@ -327,16 +329,11 @@ ContourTree merge_contour_tree(MergeTree join, MergeTree split, arbor_voxel_type
     for (std::size_t v = 0; v < count; ++v)
         ct.node_arc_offsets[v + 1] += ct.node_arc_offsets[v];
     ct.node_arcs.resize(ct.node_arc_offsets[count]);
-    std::vector<uint32_t> fill(ct.node_arc_offsets.begin(), ct.node_arc_offsets.end() - 1);
+    HugeVector<uint32_t> fill(ct.node_arc_offsets.begin(), ct.node_arc_offsets.end() - 1);
     for (std::size_t a = 0; a < ct.arc_lo.size(); ++a) {
         ct.node_arcs[fill[ct.arc_lo[a]]++] = static_cast<uint32_t>(a);
         ct.node_arcs[fill[ct.arc_hi[a]]++] = static_cast<uint32_t>(a);
     }
-
-    // Augmentation, into the join tree's parent array (no longer needed).
-    ct.vertex_arc = std::move(join.parent);
-    for (uint32_t v = 0; v < n; ++v)
-        ct.vertex_arc[v] = arcs.empty() ? kNoArc : compact[state[v].label];
     return ct;
 }
 

@@ -9,13 +9,12 @@
 // accumulated from this augmentation instead of re-flooding the volume.
 #pragma once
 
+#include "huge_pages.hpp"
 #include "merge_tree.hpp"
 #include "uninitialized_buffer.hpp"
 #include "vertex_order.hpp"
 
 #include <cstdint>
-#include <utility>
-#include <vector>
 
 namespace arbor::topology {
 
@@ -35,16 +34,16 @@ const char *node_kind_name(NodeKind kind);
 struct ContourTree {
     // Nodes in increasing simulated value (value, then vertex id): node 0 is
     // the global minimum, the last node the global maximum.
-    std::vector<uint32_t> node_vertex;
-    std::vector<uint8_t> node_up;   // arcs above the node
-    std::vector<uint8_t> node_down; // arcs below the node
-    std::vector<NodeKind> node_kind;
+    HugeVector<uint32_t> node_vertex;
+    HugeVector<uint8_t> node_up;   // arcs above the node
+    HugeVector<uint8_t> node_down; // arcs below the node
+    HugeVector<NodeKind> node_kind;
     // Arcs: lower and upper node index.  Arcs incident to a node are listed
     // in node_arc_offsets/node_arcs.
-    std::vector<uint32_t> arc_lo;
-    std::vector<uint32_t> arc_hi;
-    std::vector<uint32_t> node_arc_offsets; // [nodes + 1]
-    std::vector<uint32_t> node_arcs;
+    HugeVector<uint32_t> arc_lo;
+    HugeVector<uint32_t> arc_hi;
+    HugeVector<uint32_t> node_arc_offsets; // [nodes + 1]
+    HugeVector<uint32_t> node_arcs;
     // For every vertex id, the arc it lies on.  A node lies on several arcs;
     // it carries the arc by which the merge removed it (stable, but measures
     // count nodes on their own).  kNoArc for a one-voxel volume.
@@ -52,23 +51,18 @@ struct ContourTree {
 
     std::size_t node_count() const { return node_vertex.size(); }
     std::size_t arc_count() const { return arc_lo.size(); }
-    // Node index of a vertex, or -1 when the vertex is regular.
-    int64_t node_of_vertex(uint32_t vertex) const;
-
-    // Sorted (vertex, node) pairs behind node_of_vertex.
-    std::vector<std::pair<uint32_t, uint32_t>> vertex_node;
 };
 
 // Bytes per vertex the merge needs as work space.
 inline constexpr std::size_t kMergeWorkBytes = 16;
 
-// Merges the two trees (consumed; the join tree's parent array becomes
-// vertex_arc).  `values` of voxel type `type` order the nodes.  `work`, when
-// given, holds at least kMergeWorkBytes per vertex and is used instead of a
-// fresh allocation.  `order`, the vertices lowest first, lets the merge
-// stream through the vertices instead of chasing links (optional).
-ContourTree merge_contour_tree(MergeTree join, MergeTree split, arbor_voxel_type type, const void *values,
-                               const ProgressFn &progress = {}, void *work = nullptr,
-                               const uint32_t *order = nullptr);
+// Merges the two trees.  It consumes its inputs and frees each as soon as it
+// is done with it: the join tree's parent array becomes vertex_arc; `order`,
+// the vertices lowest first (sort_vertices), lets the merge stream through
+// the vertices instead of chasing links and lists the nodes in order; `work`,
+// when it holds at least kMergeWorkBytes per vertex, is used instead of a
+// fresh allocation (the pipeline lends the sweeps' scratch).
+ContourTree merge_contour_tree(MergeTree join, MergeTree split, UninitializedBuffer<uint32_t> order,
+                               const ProgressFn &progress = {}, UninitializedBuffer<uint8_t> work = {});
 
 } // namespace arbor::topology

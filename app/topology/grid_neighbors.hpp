@@ -27,7 +27,8 @@ inline constexpr std::array<NeighborOffset, 14> kFreudenthalOffsets{{
 // linear offsets; boundary vertices check each offset against the grid.
 class GridNeighbors {
 public:
-    GridNeighbors(int64_t nx, int64_t ny, int64_t nz) : nx_(nx), ny_(ny), nz_(nz)
+    GridNeighbors(int64_t nx, int64_t ny, int64_t nz)
+        : nx_(nx), ny_(ny), nz_(nz), inv_nx_(reciprocal(nx)), inv_nxy_(reciprocal(nx * ny))
     {
         for (std::size_t n = 0; n < kFreudenthalOffsets.size(); ++n) {
             const NeighborOffset &o = kFreudenthalOffsets[n];
@@ -44,9 +45,12 @@ public:
     template <class F>
     void for_each(int64_t v, F &&f) const
     {
-        const int64_t i = v % nx_;
-        const int64_t j = (v / nx_) % ny_;
-        const int64_t k = v / (nx_ * ny_);
+        // Vertex ids fit in 32 bits: divide by multiplying with precomputed
+        // reciprocals (exact for 32-bit operands), not with the slow divider.
+        const uint32_t x = static_cast<uint32_t>(v);
+        const int64_t row = divide(x, inv_nx_), k = divide(x, inv_nxy_);
+        const int64_t i = v - row * nx_;
+        const int64_t j = row - k * ny_;
         if (i > 0 && i + 1 < nx_ && j > 0 && j + 1 < ny_ && k > 0 && k + 1 < nz_) {
             for (int64_t d : linear_)
                 f(v + d);
@@ -61,7 +65,17 @@ public:
     }
 
 private:
+    // ceil(2^64 / d); 0 stands for d = 1.
+    static uint64_t reciprocal(int64_t d) { return ~uint64_t{0} / static_cast<uint64_t>(d) + 1; }
+    static int64_t divide(uint32_t x, uint64_t reciprocal)
+    {
+        if (reciprocal == 0)
+            return x;
+        return static_cast<int64_t>((static_cast<unsigned __int128>(reciprocal) * x) >> 64);
+    }
+
     int64_t nx_, ny_, nz_;
+    uint64_t inv_nx_, inv_nxy_;
     std::array<int64_t, 14> linear_{};
 };
 

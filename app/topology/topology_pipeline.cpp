@@ -50,8 +50,7 @@ void refuse_non_finite(const Volume &volume)
 
 } // namespace
 
-TopologyResult compute_topology(const Volume &volume, const ImportanceFn &importance,
-                                const StageProgressFn &progress)
+TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn &progress)
 {
     if (volume.empty() || volume.voxel_count() == 0)
         throw std::invalid_argument("cannot compute the topology of an empty volume");
@@ -105,16 +104,34 @@ TopologyResult compute_topology(const Volume &volume, const ImportanceFn &import
         std::rethrow_exception(split_error);
     result.timings.push_back({"join+split trees", watch.lap()});
 
-    result.tree = merge_contour_tree(std::move(join), std::move(split), volume.type(), volume.data(),
-                                     report("merging trees"), scratch.data(), order.data());
-    scratch.release();
-    order.release();
+    result.tree = merge_contour_tree(std::move(join), std::move(split), std::move(order), report("merging trees"),
+                                     std::move(scratch));
     result.timings.push_back({"merge", watch.lap()});
 
-    const FieldView field{volume.type(), volume.data(), n, &g};
-    result.branches = decompose_branches(result.tree, field, importance, report("branches and measures"));
-    result.timings.push_back({"branches+measures", watch.lap()});
     result.total_seconds = total.lap();
+    return result;
+}
+
+void decompose(TopologyResult &result, const Volume &volume, const ImportanceFn &importance,
+               const StageProgressFn &progress)
+{
+    Stopwatch watch;
+    const FieldView field{volume.type(), volume.data(), static_cast<uint32_t>(volume.voxel_count()),
+                          &volume.geometry()};
+    ProgressFn report;
+    if (progress)
+        report = [&progress](double f) { progress("branches and measures", f); };
+    result.branches = decompose_branches(result.tree, field, importance, report);
+    const double seconds = watch.lap();
+    result.timings.push_back({"branches+measures", seconds});
+    result.total_seconds += seconds;
+}
+
+TopologyResult compute_topology(const Volume &volume, const ImportanceFn &importance,
+                                const StageProgressFn &progress)
+{
+    TopologyResult result = compute_contour_tree(volume, progress);
+    decompose(result, volume, importance, progress);
     return result;
 }
 

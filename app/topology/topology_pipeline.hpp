@@ -31,8 +31,17 @@ struct TopologyResult {
 // cancel.
 using StageProgressFn = std::function<void(const char *stage, double fraction)>;
 
-// Throws std::invalid_argument for volumes with NaN or infinite values
-// (naming how many and where) and for empty volumes.
+// The contour tree alone (result.branches left empty).  Throws
+// std::invalid_argument for volumes with NaN or infinite values (naming how
+// many and where) and for empty volumes.
+TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn &progress = {});
+
+// (Re)decomposes result.tree into branches ranked by `importance`, adding
+// the stage's time: simplifiers compared on one volume share one tree.
+void decompose(TopologyResult &result, const Volume &volume, const ImportanceFn &importance,
+               const StageProgressFn &progress = {});
+
+// Both: compute_contour_tree, then decompose.
 TopologyResult compute_topology(const Volume &volume, const ImportanceFn &importance,
                                 const StageProgressFn &progress = {});
 

@@ -1,20 +1,15 @@
 // uninitialized_buffer.hpp - a fixed-size array of trivially constructible
 // elements for the topology core's one-element-per-voxel arrays.
 //
-// Two things matter for arrays of hundreds of megabytes that the sweeps read
-// at random: nothing should be written before use (std::vector would zero
-// every page first), and the memory should come in huge pages, which cuts the
-// page faults on first touch and the TLB misses of random access by a factor
-// of 512.  Large buffers are therefore mapped directly and advised as huge
-// pages (Linux transparent huge pages, "madvise" mode); small ones use new[].
+// Nothing is written before use (std::vector would zero every page first),
+// and large buffers come in huge pages (huge_pages.hpp).
 #pragma once
 
+#include "huge_pages.hpp"
+
 #include <cstddef>
-#include <new>
 #include <type_traits>
 #include <utility>
-
-#include <sys/mman.h>
 
 namespace arbor::topology {
 
@@ -24,19 +19,8 @@ class UninitializedBuffer {
 
 public:
     UninitializedBuffer() = default;
-    explicit UninitializedBuffer(std::size_t n) : size_(n)
+    explicit UninitializedBuffer(std::size_t n) : data_(n > 0 ? HugePageAllocator<T>().allocate(n) : nullptr), size_(n)
     {
-        const std::size_t bytes = n * sizeof(T);
-        if (bytes >= kMapThreshold) {
-            void *p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-            if (p == MAP_FAILED)
-                throw std::bad_alloc();
-            madvise(p, bytes, MADV_HUGEPAGE);
-            data_ = static_cast<T *>(p);
-            mapped_ = true;
-        } else if (n > 0) {
-            data_ = new T[n];
-        }
     }
     ~UninitializedBuffer() { release(); }
     UninitializedBuffer(UninitializedBuffer &&o) noexcept { swap(o); }
@@ -60,28 +44,20 @@ public:
 
     void release()
     {
-        if (mapped_)
-            munmap(data_, size_ * sizeof(T));
-        else
-            delete[] data_;
+        HugePageAllocator<T>().deallocate(data_, size_);
         data_ = nullptr;
         size_ = 0;
-        mapped_ = false;
     }
 
 private:
-    static constexpr std::size_t kMapThreshold = std::size_t{4} << 20;
-
     void swap(UninitializedBuffer &o) noexcept
     {
         std::swap(data_, o.data_);
         std::swap(size_, o.size_);
-        std::swap(mapped_, o.mapped_);
     }
 
     T *data_ = nullptr;
     std::size_t size_ = 0;
-    bool mapped_ = false;
 };
 
 } // namespace arbor::topology

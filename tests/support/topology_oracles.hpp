@@ -427,6 +427,15 @@ inline std::vector<uint32_t> enclosed_region(const GridField &field, const Adjac
     return region;
 }
 
+// The node index of every vertex, -1 for regular vertices.
+inline std::vector<int64_t> node_of_vertices(const topology::ContourTree &tree)
+{
+    std::vector<int64_t> node(tree.vertex_arc.size(), -1);
+    for (uint32_t x = 0; x < tree.node_count(); ++x)
+        node[tree.node_vertex[x]] = x;
+    return node;
+}
+
 // ---- the core's contour tree, stage by stage ---------------------------------------
 
 // The contour tree exactly as the pipeline's first three stages build it (sort,
@@ -437,11 +446,11 @@ inline topology::ContourTree staged_contour_tree(const Volume &volume)
     using namespace topology;
     const Geometry &g = volume.geometry();
     const uint32_t n = static_cast<uint32_t>(volume.voxel_count());
-    const UninitializedBuffer<uint32_t> order = sort_vertices(volume.type(), volume.data(), n);
+    UninitializedBuffer<uint32_t> order = sort_vertices(volume.type(), volume.data(), n);
     const GridNeighbors grid(g.dims[0], g.dims[1], g.dims[2]);
     MergeTree join = compute_join_tree(grid, volume.type(), volume.data(), order);
     MergeTree split = compute_split_tree(grid, volume.type(), volume.data(), order);
-    return merge_contour_tree(std::move(join), std::move(split), volume.type(), volume.data());
+    return merge_contour_tree(std::move(join), std::move(split), std::move(order));
 }
 
 } // namespace arbor::test

@@ -87,8 +87,9 @@ void expect_arcs(const ContourTree &tree, const std::vector<ExpectedArc> &expect
         for (uint32_t v : e.interior)
             expected_arc[v] = a;
     }
+    const std::vector<int64_t> node_of = test::node_of_vertices(tree);
     for (uint32_t v = 0; v < tree.vertex_arc.size(); ++v) {
-        const int64_t node = tree.node_of_vertex(v);
+        const int64_t node = node_of[v];
         if (expected_arc[v] == -2) {
             ASSERT_GE(node, 0) << "vertex " << v << " should be a node";
             const uint32_t a = tree.vertex_arc[v];
@@ -129,9 +130,9 @@ struct ExpectedMeasures {
 
 void expect_measures(const Branch &b, const ExpectedMeasures &m)
 {
-    EXPECT_DOUBLE_EQ(b.measures.absolute[kPersistence], m.persistence);
-    EXPECT_DOUBLE_EQ(b.measures.absolute[kVolume], m.volume);
-    EXPECT_DOUBLE_EQ(b.measures.absolute[kHypervolume], m.hypervolume);
+    EXPECT_DOUBLE_EQ(b.measures[kPersistence], m.persistence);
+    EXPECT_DOUBLE_EQ(b.measures[kVolume], m.volume);
+    EXPECT_DOUBLE_EQ(b.measures[kHypervolume], m.hypervolume);
 }
 
 TopologyResult topology_of(const Volume &volume, const ImportanceFn &importance = persistence_importance())
@@ -433,9 +434,9 @@ TEST(ContourTreeKnown, TwoBumpsAndASaddle)
     // B's region: the saddle and the voxels above it on B's side, v24..v27
     // without v23: values 3, 5, 7, 4.
     expect_measures(bump, {4, 4, (3 - 1) + (5 - 1) + (7 - 1) + (4 - 1)});
-    EXPECT_DOUBLE_EQ(bump.measures.absolute[kRelativeHypervolume], 0 + 2 + 4 + 1);
-    EXPECT_DOUBLE_EQ(bump.measures.relative[kPersistence], 4.0 / 8.0);
-    EXPECT_DOUBLE_EQ(bump.measures.relative[kVolume], 4.0 / 35.0);
+    EXPECT_DOUBLE_EQ(bump.measures[kRelativeHypervolume], 0 + 2 + 4 + 1);
+    EXPECT_DOUBLE_EQ(r.branches.relative(b, kPersistence), 4.0 / 8.0);
+    EXPECT_DOUBLE_EQ(r.branches.relative(b, kVolume), 4.0 / 35.0);
     EXPECT_DOUBLE_EQ(bump.importance, 0.5);
     // The arcs: root owns v0-v24 and v24-v22, the bump v24-v26; the saddle
     // node belongs to the branch that continues through it.
@@ -601,7 +602,7 @@ TEST(ContourTreeKnown, PitInAPlane)
     EXPECT_EQ(r.branches.branches[pit].kind, BranchKind::Minimum);
     // The pit's region: the pit and its saddle.
     expect_measures(r.branches.branches[pit], {30, 2, 1 + 31});
-    EXPECT_DOUBLE_EQ(r.branches.branches[pit].measures.absolute[kRelativeHypervolume], 30);
+    EXPECT_DOUBLE_EQ(r.branches.branches[pit].measures[kRelativeHypervolume], 30);
     expect_measures(r.branches.branches[0], {37, 25, 255 + 268 + 1});
 }
 
@@ -721,8 +722,8 @@ TEST_F(Crater, RelativeHypervolumeIsTheVolumeBetweenFunctionAndSaddleLevel)
     const int peak = branch_of(r, 31, 30), pit = branch_of(r, 11, 20);
     ASSERT_GE(peak, 0);
     ASSERT_GE(pit, 0);
-    EXPECT_DOUBLE_EQ(r.branches.branches[peak].measures.absolute[kRelativeHypervolume], 15);
-    EXPECT_DOUBLE_EQ(r.branches.branches[pit].measures.absolute[kRelativeHypervolume], 5);
+    EXPECT_DOUBLE_EQ(r.branches.branches[peak].measures[kRelativeHypervolume], 15);
+    EXPECT_DOUBLE_EQ(r.branches.branches[pit].measures[kRelativeHypervolume], 5);
 }
 
 // Threshold 0.45 keeps the root and the pit (0.5) but not the peak (0.4): the
@@ -808,18 +809,18 @@ TEST(ThesisExample, EqualPersistenceAndVolumeDifferentHypervolume)
     expect_measures(r.branches.branches[b1], {98, 50, 4902});
     expect_measures(r.branches.branches[b2], {98, 50, 198});
     // Carr's relative hypervolume, sum of |f - f(saddle)|: 49*98 and 98.
-    EXPECT_DOUBLE_EQ(r.branches.branches[b1].measures.absolute[kRelativeHypervolume], 4802);
-    EXPECT_DOUBLE_EQ(r.branches.branches[b2].measures.absolute[kRelativeHypervolume], 98);
+    EXPECT_DOUBLE_EQ(r.branches.branches[b1].measures[kRelativeHypervolume], 4802);
+    EXPECT_DOUBLE_EQ(r.branches.branches[b2].measures[kRelativeHypervolume], 98);
     // The root: every voxel, hypervolume the sum of all values.
     expect_measures(r.branches.branches[0], {200, 340, 4900 + 196 + 2 + 2 + 14 * 150 + 200});
     // Equal p and v, different hv: the relative measures tell them apart only
     // through hypervolume.
-    EXPECT_EQ(r.branches.branches[b1].measures.relative[kPersistence],
-              r.branches.branches[b2].measures.relative[kPersistence]);
-    EXPECT_EQ(r.branches.branches[b1].measures.relative[kVolume],
-              r.branches.branches[b2].measures.relative[kVolume]);
-    EXPECT_GT(r.branches.branches[b1].measures.relative[kHypervolume],
-              r.branches.branches[b2].measures.relative[kHypervolume]);
+    EXPECT_EQ(r.branches.relative(b1, kPersistence),
+              r.branches.relative(b2, kPersistence));
+    EXPECT_EQ(r.branches.relative(b1, kVolume),
+              r.branches.relative(b2, kVolume));
+    EXPECT_GT(r.branches.relative(b1, kHypervolume),
+              r.branches.relative(b2, kHypervolume));
 }
 
 } // namespace

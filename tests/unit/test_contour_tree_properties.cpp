@@ -370,9 +370,9 @@ TEST(ContourTreeProperties, NodesDegreesAndAugmentation)
         std::vector<char> is_node(n, 0);
         for (uint32_t x = 0; x < t.node_count(); ++x) {
             const uint32_t v = t.node_vertex[x];
+            if (is_node[v])
+                return "vertex " + std::to_string(v) + " is more than one node";
             is_node[v] = 1;
-            if (t.node_of_vertex(v) != x)
-                return "node_of_vertex(" + std::to_string(v) + ") is not " + std::to_string(x);
             if (t.node_up[x] != up[x] || t.node_down[x] != down[x])
                 return "node " + std::to_string(x) + ": node_up/node_down disagree with the arcs";
             if (t.node_down[x] != s.sweeps.lower_components[v] || t.node_up[x] != s.sweeps.upper_components[v])
@@ -428,8 +428,9 @@ TEST(ContourTreeProperties, PipelineSucceedsAndBuildsTheStagedTree)
             return arc == kNoArc ? std::pair<uint32_t, uint32_t>{kNoVertex, kNoVertex}
                                  : std::pair{t.node_vertex[t.arc_lo[arc]], t.node_vertex[t.arc_hi[arc]]};
         };
+        const std::vector<int64_t> node_of = test::node_of_vertices(b);
         for (uint32_t v = 0; v < b.vertex_arc.size(); ++v)
-            if (ends(a, a.vertex_arc[v]) != ends(b, b.vertex_arc[v]) && b.node_of_vertex(v) < 0)
+            if (ends(a, a.vertex_arc[v]) != ends(b, b.vertex_arc[v]) && node_of[v] < 0)
                 return "vertex " + std::to_string(v) + " lies on different arcs";
         std::set<std::pair<uint32_t, uint32_t>> arcs_a, arcs_b;
         for (uint32_t x = 0; x < a.arc_count(); ++x)
@@ -581,8 +582,9 @@ TEST(BranchDecompositionProperties, BranchesAreMonotonePathsCoveringEveryArc)
                     return "branch " + std::to_string(b) + "'s extremum does not lie on it";
             }
             for (uint32_t b = 0; b < bs.size(); ++b) {
-                std::vector<uint32_t> c = bs[b].children;
-                std::sort(c.begin(), c.end());
+                std::vector<uint32_t> c;
+                for (const uint32_t child : d.children(b))
+                    c.push_back(child);
                 if (c != kids[b])
                     return "branch " + std::to_string(b) + ": children list disagrees with the parents";
             }
@@ -624,7 +626,8 @@ TEST(BranchDecompositionProperties, MeasuresMatchFloodedRegions)
     for_every_grid(
         [](const Sample &s) -> std::string {
             const ContourTree &t = s.result->tree;
-            const auto &bs = s.result->branches.branches;
+            const BranchDecomposition &d = s.result->branches;
+            const auto &bs = d.branches;
             const test::GridField &f = s.field;
             const double f_min = f.f[s.sweeps.order.front()], f_max = f.f[s.sweeps.order.back()];
             const Geometry &g = s.volume.geometry();
@@ -641,7 +644,7 @@ TEST(BranchDecompositionProperties, MeasuresMatchFloodedRegions)
                 std::array<double, kMeasureCount> want{};
                 if (b == 0) {
                     want = root;
-                    want[kRelativeHypervolume] = bs[b].measures.absolute[kRelativeHypervolume];
+                    want[kRelativeHypervolume] = bs[b].measures[kRelativeHypervolume];
                 } else {
                     const uint32_t sv = t.node_vertex[bs[b].saddle_node], ev = t.node_vertex[bs[b].extremum_node];
                     const auto region =
@@ -651,19 +654,19 @@ TEST(BranchDecompositionProperties, MeasuresMatchFloodedRegions)
                     want[kVolumeMm3] = region.size() * mm3;
                     for (uint32_t v : region)
                         want[kHypervolume] += f.f[v] - f_min;
-                    want[kRelativeHypervolume] = bs[b].measures.absolute[kRelativeHypervolume]; // tested below
+                    want[kRelativeHypervolume] = bs[b].measures[kRelativeHypervolume]; // tested below
                 }
                 for (int m = 0; m < kMeasureCount; ++m) {
-                    const double got = bs[b].measures.absolute[m];
+                    const double got = bs[b].measures[m];
                     if (!near(got, want[m]))
                         err << "branch " << b << " " << measure_id(m) << " " << got << ", flooded " << want[m]
                             << "; ";
                     const double rel = root[m] > 0 ? want[m] / root[m] : 0.0;
-                    if (m != kRelativeHypervolume && !near(bs[b].measures.relative[m], rel))
-                        err << "branch " << b << " relative " << measure_id(m) << " " << bs[b].measures.relative[m]
+                    if (m != kRelativeHypervolume && !near(d.relative(b, m), rel))
+                        err << "branch " << b << " relative " << measure_id(m) << " " << d.relative(b, m)
                             << ", expected " << rel << "; ";
                 }
-                if (b > 0 && !near(bs[b].importance, bs[b].measures.relative[kPersistence]))
+                if (b > 0 && !near(bs[b].importance, d.relative(b, kPersistence)))
                     err << "branch " << b << ": importance is not its relative persistence; ";
             }
             return err.str();
@@ -689,7 +692,7 @@ TEST(BranchDecompositionProperties, RelativeHypervolumeIsTheVolumeBetweenFunctio
                 for (uint32_t v : test::enclosed_region(s.field, s.adjacency, sv, ev, peak))
                     want += peak ? s.field.f[v] - s.field.f[sv] : s.field.f[sv] - s.field.f[v];
                 want = std::max(0.0, want);
-                const double got = bs[b].measures.absolute[kRelativeHypervolume];
+                const double got = bs[b].measures[kRelativeHypervolume];
                 if (std::fabs(got - want) > 1e-9 * (1.0 + want))
                     err << "branch " << b << " (saddle " << sv << ", extremum " << ev << "): " << got
                         << ", expected " << want << "; ";
@@ -729,8 +732,9 @@ TEST(BranchDecompositionProperties, RegionsAddUpOverTheHierarchy)
                 return "";
             const double f_min = s.field.f[s.sweeps.order.front()];
             std::vector<double> count(bs.size(), 0.0), sum(bs.size(), 0.0);
+            const std::vector<int64_t> node_of = test::node_of_vertices(t);
             for (uint32_t v = 0; v < s.field.size(); ++v) {
-                const int64_t node = t.node_of_vertex(v);
+                const int64_t node = node_of[v];
                 const uint32_t b = node >= 0 ? d.node_branch[node] : d.arc_branch[t.vertex_arc[v]];
                 count[b] += 1;
                 sum[b] += s.field.f[v] - f_min;
@@ -740,18 +744,18 @@ TEST(BranchDecompositionProperties, RegionsAddUpOverTheHierarchy)
                     count[b] += 1;
                     sum[b] += s.field.f[t.node_vertex[bs[b].saddle_node]] - f_min;
                 }
-                for (uint32_t c : bs[b].children) {
+                for (const uint32_t c : d.children(b)) {
                     count[b] += count[c] - 1;
                     sum[b] += sum[c] - (s.field.f[t.node_vertex[bs[c].saddle_node]] - f_min);
                 }
             }
             std::ostringstream err;
             for (uint32_t b = 0; b < bs.size(); ++b) {
-                if (bs[b].measures.absolute[kVolume] != count[b])
-                    err << "branch " << b << " volume " << bs[b].measures.absolute[kVolume] << ", summed "
+                if (bs[b].measures[kVolume] != count[b])
+                    err << "branch " << b << " volume " << bs[b].measures[kVolume] << ", summed "
                         << count[b] << "; ";
-                if (std::fabs(bs[b].measures.absolute[kHypervolume] - sum[b]) > 1e-9 * (1.0 + std::fabs(sum[b])))
-                    err << "branch " << b << " hypervolume " << bs[b].measures.absolute[kHypervolume]
+                if (std::fabs(bs[b].measures[kHypervolume] - sum[b]) > 1e-9 * (1.0 + std::fabs(sum[b])))
+                    err << "branch " << b << " hypervolume " << bs[b].measures[kHypervolume]
                         << ", summed " << sum[b] << "; ";
             }
             return err.str();
@@ -774,7 +778,7 @@ TEST(BranchDecompositionProperties, SameKindChildIsNeverMorePersistentThanItsPar
                 if (p.kind != bs[b].kind)
                     continue;
                 if (bs[b].importance > p.importance ||
-                    bs[b].measures.absolute[kPersistence] > p.measures.absolute[kPersistence])
+                    bs[b].measures[kPersistence] > p.measures[kPersistence])
                     return "branch " + std::to_string(b) + " is more persistent than its parent";
             }
             return "";
@@ -823,6 +827,7 @@ std::string check_cut(const Sample &s, const SimplificationCut &cut, const std::
     const std::vector<uint32_t> labels = label_voxels(t, d, cut);
     if (labels.size() != s.field.size())
         return "label_voxels labels " + std::to_string(labels.size()) + " voxels";
+    const std::vector<int64_t> node_of = test::node_of_vertices(t);
     for (uint32_t v = 0; v < labels.size(); ++v) {
         if (labels[v] >= cut.kept.size())
             return "voxel " + std::to_string(v) + " has label " + std::to_string(labels[v]);
@@ -831,7 +836,7 @@ std::string check_cut(const Sample &s, const SimplificationCut &cut, const std::
                 return "a tree without arcs must label everything 0";
             continue;
         }
-        const int64_t node = t.node_of_vertex(v);
+        const int64_t node = node_of[v];
         const uint32_t owner = node >= 0 ? d.node_branch[node] : d.arc_branch[t.vertex_arc[v]];
         if (labels[v] != static_cast<uint32_t>(cut.kept_index[nearest_kept(d, keep, owner)]))
             return "voxel " + std::to_string(v) + " is not labelled with the nearest kept ancestor of its branch";
