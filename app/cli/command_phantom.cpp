@@ -1,5 +1,6 @@
 // `arbor phantom`: write a built-in synthetic volume to a NRRD file.
 #include "commands.hpp"
+#include "label_map_output.hpp"
 
 #include "core/nrrd_writer.hpp"
 #include "core/phantom.hpp"
@@ -16,6 +17,7 @@ struct PhantomArgs {
     std::string output;
     PhantomOptions options;
     bool raw = false;
+    std::string labels;
 };
 
 } // namespace
@@ -36,6 +38,9 @@ void add_phantom_command(CLI::App &app, Context &context)
         ->check(CLI::Range(0, 10000))->default_val(0);
     sub->add_option("--seed", a->options.seed, "Random seed for noise and blobs")->default_val(1);
     sub->add_flag("--raw", a->raw, "Write raw (uncompressed) voxel data");
+    sub->add_option("--labels", a->labels,
+                    "Also write the structures as a ground-truth label map (NRRD + 3D Slicer .ctbl), e.g. for "
+                    "`arbor compare --truth`");
     context.add_command(sub, [a]() {
         const PhantomRecipe recipe = builtin_phantom(a->kind);
         const Volume v = make_phantom(recipe, a->options);
@@ -47,6 +52,13 @@ void add_phantom_command(CLI::App &app, Context &context)
                         {"arbor_phantom_blobs", std::to_string(a->options.blobs)},
                         {"arbor_phantom_seed", std::to_string(a->options.seed)}};
         write_nrrd(v, a->output, w);
+        if (!a->labels.empty()) {
+            std::vector<std::string> names{"background"};
+            for (const PhantomStructure &st : recipe.structures)
+                names.push_back(st.name);
+            write_label_map(a->labels, v.geometry(), "arbor phantom " + a->kind + " structures",
+                            phantom_structure_labels(recipe, a->options.size), names);
+        }
         std::printf("wrote %s: %s phantom, %lld^3 voxels\n", a->output.c_str(), a->kind.c_str(),
                     static_cast<long long>(a->options.size));
         return 0;

@@ -2,14 +2,13 @@
 // its persistence branch decomposition with every branch's measures; with
 // --keep/--threshold also the simplified hierarchy and its voxel labels.
 #include "commands.hpp"
+#include "branch_json.hpp"
+#include "label_map_output.hpp"
+#include "simplification_run.hpp"
 #include "topology_run.hpp"
 #include "volume_input.hpp"
 
-#include "core/atomic_file.hpp"
-#include "core/nrrd_writer.hpp"
 #include "topology/simplification.hpp"
-
-#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -25,99 +24,9 @@ struct TreeArgs {
     VolumeInput input;
     std::string json;
     std::string labels;
-    std::optional<std::size_t> keep;
-    std::optional<double> threshold;
+    CutRequest cut; // optional here: without one, the whole hierarchy
     bool timings = false;
 };
-
-// Streams JSON: trees of noisy scans have millions of nodes, too many to
-// build as one document in memory first.
-class JsonStream {
-public:
-    explicit JsonStream(AtomicFile &out) : out_(out) {}
-    void raw(const std::string &s) { out_.write(s); }
-    void number(double x)
-    {
-        if (!std::isfinite(x)) {
-            raw("null");
-            return;
-        }
-        char buf[40];
-        if (x == std::floor(x) && std::fabs(x) < 1e15)
-            std::snprintf(buf, sizeof buf, "%.0f", x);
-        else
-            std::snprintf(buf, sizeof buf, "%.17g", x);
-        raw(buf);
-    }
-    void string(const std::string &s) { raw(nlohmann::json(s).dump()); }
-    void key(const char *k)
-    {
-        string(k);
-        raw(":");
-    }
-    void triple(const std::array<double, 3> &p)
-    {
-        raw("[");
-        for (int i = 0; i < 3; ++i) {
-            if (i)
-                raw(",");
-            number(p[i]);
-        }
-        raw("]");
-    }
-
-private:
-    AtomicFile &out_;
-};
-
-std::array<double, 3> ijk(const Geometry &g, uint32_t v)
-{
-    return {static_cast<double>(v % g.dims[0]), static_cast<double>((v / g.dims[0]) % g.dims[1]),
-            static_cast<double>(v / (g.dims[0] * g.dims[1]))};
-}
-
-void write_point(JsonStream &j, const topology::ContourTree &t, const Volume &vol, uint32_t node)
-{
-    const uint32_t v = t.node_vertex[node];
-    j.raw("{");
-    j.key("node");
-    j.number(node);
-    j.raw(",");
-    j.key("vertex");
-    j.number(v);
-    j.raw(",");
-    j.key("ijk");
-    j.triple(ijk(vol.geometry(), v));
-    j.raw(",");
-    j.key("position_mm");
-    j.triple(vol.geometry().position_of(v));
-    j.raw(",");
-    j.key("value");
-    j.number(vol.value(v));
-    j.raw("}");
-}
-
-void write_measures(JsonStream &j, const std::array<double, topology::kMeasureCount> &m)
-{
-    j.raw("{");
-    for (int i = 0; i < topology::kMeasureCount; ++i) {
-        if (i)
-            j.raw(",");
-        j.key(topology::measure_id(i));
-        j.number(m[static_cast<std::size_t>(i)]);
-    }
-    j.raw("}");
-}
-
-const char *kind_name(topology::BranchKind k)
-{
-    switch (k) {
-    case topology::BranchKind::Root: return "root";
-    case topology::BranchKind::Maximum: return "maximum";
-    case topology::BranchKind::Minimum: return "minimum";
-    }
-    return "?";
-}
 
 void write_json(const std::string &path, const LoadedVolume &in, const topology::TopologyResult &topo,
                 const topology::SimplificationCut *cut)
@@ -165,7 +74,7 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
         j.number(v);
         j.raw(",");
         j.key("ijk");
-        j.triple(ijk(vol.geometry(), v));
+        j.triple(voxel_ijk(vol.geometry(), v));
         j.raw(",");
         j.key("position_mm");
         j.triple(vol.geometry().position_of(v));
@@ -217,7 +126,7 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
         j.number(static_cast<double>(b));
         j.raw(",");
         j.key("kind");
-        j.string(kind_name(br.kind));
+        j.string(branch_kind_name(br.kind));
         j.raw(",");
         j.key("parent");
         j.number(br.parent);
@@ -234,19 +143,16 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
         }
         j.raw("],");
         j.key("extremum");
-        write_point(j, t, vol, br.extremum_node);
+        write_tree_point(j, t, vol, br.extremum_node);
         j.raw(",");
         j.key("saddle");
-        write_point(j, t, vol, br.saddle_node);
+        write_tree_point(j, t, vol, br.saddle_node);
         j.raw(",");
         j.key("measures");
         write_measures(j, br.measures);
         j.raw(",");
         j.key("relative_measures");
-        std::array<double, topology::kMeasureCount> relative;
-        for (int m = 0; m < topology::kMeasureCount; ++m)
-            relative[m] = d.relative(static_cast<uint32_t>(b), m);
-        write_measures(j, relative);
+        write_relative_measures(j, d, static_cast<uint32_t>(b));
         j.raw(",");
         j.key("importance");
         j.number(std::isinf(br.importance) ? 1.0 : br.importance);
@@ -297,24 +203,6 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
     file.commit();
 }
 
-void write_labels(const std::string &path, const LoadedVolume &in, const std::vector<uint32_t> &labels,
-                  std::size_t label_count)
-{
-    const bool wide = label_count > 65535;
-    Volume v = Volume::allocate(wide ? ARBOR_VOXEL_U32 : ARBOR_VOXEL_U16, in.volume.geometry(), {},
-                                uint64_t{1} << 40);
-    for (std::size_t i = 0; i < labels.size(); ++i) {
-        if (wide)
-            v.as<uint32_t>()[i] = labels[i];
-        else
-            v.as<uint16_t>()[i] = static_cast<uint16_t>(labels[i]);
-    }
-    NrrdWriteOptions w;
-    w.content = "arbor branch labels of " + in.source;
-    w.key_values = {{"arbor_labels", std::to_string(label_count)}};
-    write_nrrd(v, path, w);
-}
-
 } // namespace
 
 void add_tree_command(CLI::App &app, Context &context)
@@ -324,27 +212,24 @@ void add_tree_command(CLI::App &app, Context &context)
     auto a = std::make_shared<TreeArgs>();
     a->input.add_to(*sub, context);
     sub->add_option("--json", a->json, "Write nodes, arcs and branches with measures as JSON")->required();
-    auto *keep = sub->add_option("--keep", a->keep, "Also cut the hierarchy to the N most important branches")
-                     ->check(CLI::PositiveNumber);
-    auto *threshold = sub->add_option("--threshold", a->threshold,
-                                      "Also cut the hierarchy at this relative persistence, in [0, 1]")
-                          ->check(CLI::Range(0.0, 1.0));
-    keep->excludes(threshold);
+    add_cut_options(*sub, a->cut, "Also cut the hierarchy at this relative persistence, in [0, 1]");
     sub->add_option("--labels", a->labels, "With --keep/--threshold: write the voxel -> branch labels (NRRD)");
     sub->add_flag("--timings", a->timings, "Print per-stage seconds and peak memory on stderr");
     context.add_command(sub, [a, &context]() {
-        if (!a->labels.empty() && !a->keep && !a->threshold)
+        if (!a->labels.empty() && !a->cut.keep && !a->cut.threshold)
             throw std::invalid_argument("--labels needs --keep or --threshold");
         const LoadedVolume in = a->input.load();
         const topology::TopologyResult topo = run_topology(in.volume, topology::persistence_importance(), context);
         std::optional<topology::SimplificationCut> cut;
-        if (a->keep)
-            cut = topology::cut_by_count(topo.branches, *a->keep);
-        else if (a->threshold)
-            cut = topology::cut_by_threshold(topo.branches, *a->threshold);
+        if (a->cut.keep)
+            cut = topology::cut_by_count(topo.branches, *a->cut.keep);
+        else if (a->cut.threshold)
+            cut = topology::cut_by_threshold(topo.branches, *a->cut.threshold);
         write_json(a->json, in, topo, cut ? &*cut : nullptr);
         if (cut && !a->labels.empty())
-            write_labels(a->labels, in, topology::label_voxels(topo.tree, topo.branches, *cut), cut->kept.size());
+            write_label_map(a->labels, in.volume.geometry(), "arbor branch labels of " + in.source,
+                            topology::label_voxels(topo.tree, topo.branches, *cut),
+                            kept_label_names(topo.branches, *cut));
         std::printf("%s: %zu nodes, %zu arcs, %zu branches%s -> %s\n", in.source.c_str(),
                     topo.tree.node_count(), topo.tree.arc_count(), topo.branches.branches.size(),
                     cut ? (", " + std::to_string(cut->kept.size()) + " kept").c_str() : "", a->json.c_str());

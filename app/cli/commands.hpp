@@ -13,5 +13,7 @@ void add_phantom_command(CLI::App &app, Context &context);
 void add_convert_command(CLI::App &app, Context &context);
 void add_pairs_command(CLI::App &app, Context &context);
 void add_tree_command(CLI::App &app, Context &context);
+void add_simplify_command(CLI::App &app, Context &context);
+void add_compare_command(CLI::App &app, Context &context);
 
 } // namespace arbor::cli

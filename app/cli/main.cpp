@@ -59,6 +59,8 @@ int main(int argc, char **argv)
     cli::add_phantom_command(app, context);
     cli::add_convert_command(app, context);
     cli::add_tree_command(app, context);
+    cli::add_simplify_command(app, context);
+    cli::add_compare_command(app, context);
     cli::add_pairs_command(app, context);
     cli::add_plugins_command(app, context);
     cli::add_plugin_check_command(app, context);

@@ -6,15 +6,30 @@
 
 namespace arbor::cli {
 
+namespace {
+
+topology::StageProgressFn terminal_stages(Context &context)
+{
+    return [&context](const char *stage, double fraction) {
+        if (cancellation_requested())
+            throw std::runtime_error("cancelled");
+        context.progress.report(stage, fraction);
+    };
+}
+
+} // namespace
+
 topology::TopologyResult run_topology(const Volume &volume, const topology::ImportanceFn &importance,
                                       Context &context)
 {
     Task task(&context.progress); // owns the progress display for the run
-    return topology::compute_topology(volume, importance, [&](const char *stage, double fraction) {
-        if (cancellation_requested())
-            throw std::runtime_error("cancelled");
-        context.progress.report(stage, fraction);
-    });
+    return topology::compute_topology(volume, importance, terminal_stages(context));
+}
+
+topology::TopologyResult run_contour_tree(const Volume &volume, Context &context)
+{
+    Task task(&context.progress);
+    return topology::compute_contour_tree(volume, terminal_stages(context));
 }
 
 void print_timings(const topology::TopologyResult &result, const Volume &volume)

@@ -12,6 +12,9 @@ namespace arbor::cli {
 topology::TopologyResult run_topology(const Volume &volume, const topology::ImportanceFn &importance,
                                       Context &context);
 
+// The contour tree alone (no branches yet), with terminal progress.
+topology::TopologyResult run_contour_tree(const Volume &volume, Context &context);
+
 // Per-stage seconds, total, and peak memory (bytes per voxel) on stderr.
 void print_timings(const topology::TopologyResult &result, const Volume &volume);
 

@@ -265,3 +265,24 @@ Volume make_phantom(const PhantomRecipe &recipe, const PhantomOptions &options)
 }
 
 } // namespace arbor
+
+namespace arbor {
+
+std::vector<uint32_t> phantom_structure_labels(const PhantomRecipe &recipe, int64_t size)
+{
+    if (size < 8 || size > 1024)
+        throw std::invalid_argument("phantom size " + std::to_string(size) + " must lie in [8, 1024]");
+    const std::size_t n = static_cast<std::size_t>(size);
+    std::vector<uint32_t> labels(n * n * n, 0);
+    const double voxel = 2.0 / static_cast<double>(size);
+    const auto coord = [&](std::size_t i) { return (static_cast<double>(i) + 0.5) * voxel - 1.0; };
+    for (std::size_t k = 0; k < n; ++k)
+        for (std::size_t j = 0; j < n; ++j)
+            for (std::size_t i = 0; i < n; ++i)
+                for (std::size_t s = 0; s < recipe.structures.size(); ++s)
+                    if (ellipsoid_radius(recipe.structures[s], {coord(i), coord(j), coord(k)}) < 1.0)
+                        labels[i + n * (j + n * k)] = static_cast<uint32_t>(s + 1);
+    return labels;
+}
+
+} // namespace arbor

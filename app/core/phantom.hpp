@@ -60,4 +60,10 @@ PhantomRecipe builtin_phantom(std::string_view kind); // throws for unknown kind
 // Throws std::invalid_argument for unusable options (size < 8 or > 1024...).
 Volume make_phantom(const PhantomRecipe &recipe, const PhantomOptions &options);
 
+// Ground truth for comparison studies: per voxel of a phantom of `size`^3,
+// 1 + the index of the last structure whose ellipsoid holds the voxel's
+// centre (later structures are painted over earlier ones), 0 for none.
+// Blobs and noise are not structures: they keep the label around them.
+std::vector<uint32_t> phantom_structure_labels(const PhantomRecipe &recipe, int64_t size);
+
 } // namespace arbor

@@ -341,3 +341,130 @@ class Topology(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+def png_size(path):
+    """(width, height) of a PNG file, checking its signature."""
+    data = pathlib.Path(path).read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", f"{path} is not a PNG"
+    return int.from_bytes(data[16:20], "big"), int.from_bytes(data[20:24], "big")
+
+
+class Simplify(unittest.TestCase):
+    NOISY = ("--phantom", "head", "--phantom-noise", 8, "--phantom-blobs", 20)
+
+    def test_simplify_writes_kept_branches_and_a_slicer_label_map(self):
+        out, labels = SCRATCH / "itri.json", SCRATCH / "itri-labels.nrrd"
+        arbor("simplify", *self.NOISY, "--simplifier", "itri", "--keep", 16, "--json", out, "--labels", labels)
+        j = json.loads(out.read_text())
+        self.assertEqual(j["format"], "arbor-simplified-tree/1")
+        self.assertEqual(j["simplifier"]["id"], "org.arbor.simplifier.itri")
+        kept = j["kept_branches"]
+        self.assertEqual(len(kept), 16)
+        self.assertEqual(kept[0]["kind"], "root")
+        for b in kept[1:]:
+            self.assertGreater(b["importance"], 0)
+            self.assertLess(b["parent_label"], b["label"])
+            self.assertEqual(b["depth"], kept[b["parent_label"]]["depth"] + 1)
+            self.assertEqual(set(b["relative_measures"]), {"persistence", "volume", "volume-mm3", "hypervolume",
+                                                            "relative-hypervolume"})
+        # The tumour (centre (-27, 47, 10) mm, radius 8 mm) is one of ITri's branches.
+        self.assertTrue(any(sum((a - c) ** 2 for a, c in zip(b["extremum"]["position_mm"], (-27, 47, 10))) < 64
+                            for b in kept))
+        lab = info(labels)
+        self.assertEqual(lab["dims"], [128, 128, 128])
+        self.assertEqual((lab["stored"]["min"], lab["stored"]["max"]), (0, 15))
+        table = (SCRATCH / "itri-labels.ctbl").read_text().splitlines()
+        entries = [l.split() for l in table if not l.startswith("#")]
+        self.assertEqual([int(e[0]) for e in entries], list(range(16)))
+        self.assertTrue(all(len(e) == 6 and all(0 <= int(x) <= 255 for x in e[2:]) for e in entries))
+
+    def test_threshold_on_a_real_volume(self):
+        out = SCRATCH / "tooth-persistence.json"
+        arbor("simplify", DATA / "tooth/tooth.nhdr", "--simplifier", "org.arbor.simplifier.persistence",
+              "--threshold", 0.2, "--json", out)
+        kept = json.loads(out.read_text())["kept_branches"]
+        self.assertGreater(len(kept), 1)
+        for b in kept[1:]:
+            self.assertGreater(b["importance"], 0.2)
+            self.assertAlmostEqual(b["importance"], b["relative_measures"]["persistence"])
+
+    def test_compare_on_the_noisy_phantom_with_ground_truth(self):
+        phantom, truth, out = SCRATCH / "noisy.nrrd", SCRATCH / "truth.nrrd", SCRATCH / "compare-phantom"
+        arbor("phantom", "--noise", 8, "--blobs", 20, "-o", phantom, "--labels", truth)
+        names = [l.split()[1] for l in (SCRATCH / "truth.ctbl").read_text().splitlines() if not l.startswith("#")]
+        code, stdout, _ = arbor("compare", phantom, "--keep", 16, "--truth", truth, "--out", out)
+        self.assertIn("report.md", stdout)
+        r = json.loads((out / "report.json").read_text())
+        ids = [s["id"] for s in r["simplifiers"]]
+        self.assertEqual(ids, ["org.arbor.simplifier." + n for n in ("itri", "persistence", "volume", "hypervolume")])
+        for s in r["simplifiers"]:
+            self.assertEqual(s["kept_count"], 16)
+            self.assertEqual(len(s["kept"]), 16)
+            self.assertGreater(s["seconds"], 0)
+        self.assertEqual(len(r["overlaps"]), 6)
+        for o in r["overlaps"]:
+            self.assertEqual(o["shared"] + o["only_a"], 15)
+            self.assertAlmostEqual(o["jaccard"], o["shared"] / (o["shared"] + o["only_a"] + o["only_b"]))
+        tumour = next(t for t in r["truth"]["labels"] if names[t["label"]] == "tumour")
+        self.assertGreater(tumour["dice"]["org.arbor.simplifier.itri"]["dice"], 0.5)
+        self.assertLess(tumour["dice"]["org.arbor.simplifier.persistence"]["dice"], 0.1)
+        skull = next(t for t in r["truth"]["labels"] if names[t["label"]] == "skull")
+        for s in ids:
+            self.assertGreater(skull["dice"][s]["dice"], 0.8)
+        rows = (out / "report.csv").read_text().splitlines()
+        self.assertEqual(len(rows), 1 + 4 * 16)
+        self.assertTrue(rows[0].startswith("simplifier,label,branch,kind,importance"))
+        md = (out / "report.md").read_text()
+        self.assertIn("## Ground truth", md)
+        self.assertIn("![priority-lines.png](priority-lines.png)", md)
+        w, h = png_size(out / "priority-lines.png")
+        self.assertGreater(w, 600)
+        self.assertGreater(h, 4 * 100)
+        w, h = png_size(out / "labels-axial.png")
+        self.assertGreater(w, 5 * 128)
+
+    def test_compare_on_a_real_volume(self):
+        out = SCRATCH / "compare-engine"
+        arbor("compare", DATA / "engine/engine.vti", "--keep", 10, "--simplifiers", "itri,volume", "--out", out)
+        r = json.loads((out / "report.json").read_text())
+        self.assertEqual([s["kept_count"] for s in r["simplifiers"]], [10, 10])
+        self.assertEqual(r["volume"]["dims"], [256, 256, 128])
+        png_size(out / "labels-axial.png")
+
+    def test_a_third_party_simplifier_is_picked_up_by_id(self):
+        out = SCRATCH / "compare-third-party"
+        env = {"ARBOR_PLUGIN_PATH": str(FIXTURES / "fixture-simplifier")}
+        arbor("compare", "--phantom", "head", "--phantom-size", 48, "--keep", 5, "--simplifiers",
+              "volume-squared,org.arbor.simplifier.volume", "--out", out, env=env)
+        r = json.loads((out / "report.json").read_text())
+        self.assertEqual(r["simplifiers"][0]["id"], "org.arbor.test.simplifier.volume-squared")
+        # Squaring the volume ranks branches as the volume does.
+        self.assertEqual(r["overlaps"][0]["jaccard"], 1.0)
+
+    def test_bad_simplifiers_and_arguments_are_refused_clearly(self):
+        for library, id_ in (("fixture-simplifier-nan", "org.arbor.test.simplifier.nan"),
+                             ("fixture-simplifier-negative", "org.arbor.test.simplifier.negative")):
+            code, _, err = arbor("simplify", "--phantom", "head", "--phantom-size", 32, "--simplifier", id_,
+                                 "--keep", 3, "--json", SCRATCH / "bad.json", check=False,
+                                 env={"ARBOR_PLUGIN_PATH": str(FIXTURES / library)})
+            self.assertNotEqual(code, 0)
+            self.assertIn(id_, err)
+            self.assertIn("finite number >= 0", err)
+            self.assertFalse((SCRATCH / "bad.json").exists())
+        code, _, err = arbor("simplify", "--phantom", "head", "--simplifier", "entropy", "--keep", 3,
+                             "--json", SCRATCH / "x.json", check=False)
+        self.assertNotEqual(code, 0)
+        self.assertIn("no simplifier 'entropy'", err)
+        self.assertIn("org.arbor.simplifier.itri", err)
+        code, _, err = arbor("simplify", "--phantom", "head", "--json", SCRATCH / "x.json", check=False)
+        self.assertNotEqual(code, 0)
+        self.assertIn("--keep N or --threshold T", err)
+        code, _, err = arbor("compare", "--phantom", "head", "--phantom-size", 32, "--keep", 3, "--truth",
+                             DATA / "neghip/neghip.nhdr", "--out", SCRATCH / "x", check=False)
+        self.assertNotEqual(code, 0)
+        self.assertIn("dims differ", err)
+        code, _, err = arbor("simplify", "--phantom", "head", "--simplifier", "n-measure", "--n-measure.measures",
+                             "volume", "--keep", 3, "--json", SCRATCH / "x.json", check=False)
+        self.assertNotEqual(code, 0)
+        self.assertIn("at least two measures", err)

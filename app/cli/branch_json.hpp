@@ -1,0 +1,32 @@
+// branch_json.hpp - the JSON pieces every topology output shares: points of
+// the contour tree (vertex, ijk, LPS mm, value), measure objects and branch
+// kinds, written through a JsonStream.
+#pragma once
+
+#include "json_stream.hpp"
+
+#include "core/volume.hpp"
+#include "topology/branch_decomposition.hpp"
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+namespace arbor::cli {
+
+// Voxel indices (i, j, k) of vertex v.
+std::array<double, 3> voxel_ijk(const Geometry &g, uint32_t v);
+
+// {"node", "vertex", "ijk", "position_mm", "value"} of a contour-tree node.
+void write_tree_point(JsonStream &j, const topology::ContourTree &t, const Volume &vol, uint32_t node);
+
+// {"persistence": ..., "volume": ...} keyed by the SDK's measure ids.
+void write_measures(JsonStream &j, const std::array<double, topology::kMeasureCount> &m);
+void write_relative_measures(JsonStream &j, const topology::BranchDecomposition &d, uint32_t branch);
+
+const char *branch_kind_name(topology::BranchKind k);
+
+// "volume": {"source", "dims", "spacing_mm"}.
+void write_volume_summary(JsonStream &j, const std::string &source, const Geometry &g);
+
+} // namespace arbor::cli

@@ -1,0 +1,268 @@
+#include "comparison_report.hpp"
+
+#include "branch_json.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace arbor::cli {
+
+namespace {
+
+std::string fixed(double x, int digits)
+{
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", digits, x);
+    return buf;
+}
+
+std::string general(double x)
+{
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.6g", x);
+    return buf;
+}
+
+// The CSV field for text that may hold commas or quotes.
+std::string csv_text(const std::string &s)
+{
+    if (s.find_first_of(",\"\n") == std::string::npos)
+        return s;
+    std::string out = "\"";
+    for (char c : s)
+        out += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return out + "\"";
+}
+
+const topology::Branch &kept_branch(const ComparedSimplifier &c, std::size_t label)
+{
+    return c.run.branches.branches[c.run.cut.kept[label]];
+}
+
+} // namespace
+
+void write_report_json(const std::filesystem::path &path, const ComparisonStudy &study)
+{
+    const topology::TopologyResult &topo = *study.topology;
+    AtomicFile file(path);
+    JsonStream j(file);
+    j.raw("{\n");
+    j.key("format");
+    j.string("arbor-comparison/1");
+    j.raw(",\n");
+    write_volume_summary(j, study.source, study.volume->geometry());
+    j.raw(",\n");
+    j.key("contour_tree");
+    j.raw("{");
+    j.key("nodes");
+    j.number(static_cast<double>(topo.tree.node_count()));
+    j.raw(",");
+    j.key("arcs");
+    j.number(static_cast<double>(topo.tree.arc_count()));
+    j.raw(",");
+    j.key("seconds");
+    j.number(topo.total_seconds);
+    j.raw("},\n");
+    write_cut(j, study.request);
+    j.raw(",\n");
+    j.key("simplifiers");
+    j.raw("[");
+    for (std::size_t r = 0; r < study.runs.size(); ++r) {
+        const SimplifiedTree &s = study.runs[r].run;
+        j.raw(r ? ",\n{" : "\n{");
+        j.key("id");
+        j.string(s.id);
+        j.raw(",");
+        j.key("name");
+        j.string(s.name);
+        j.raw(",");
+        j.key("version");
+        j.string(s.version);
+        j.raw(",");
+        j.key("seconds");
+        j.number(s.seconds);
+        j.raw(",");
+        j.key("branches");
+        j.number(static_cast<double>(s.branches.branches.size()));
+        j.raw(",");
+        j.key("kept_count");
+        j.number(static_cast<double>(s.cut.kept.size()));
+        j.raw(",");
+        j.key("kept");
+        write_kept_branches(j, topo.tree, *study.volume, s);
+        j.raw("}");
+    }
+    j.raw("\n],\n");
+    j.key("overlaps");
+    j.raw("[");
+    for (std::size_t i = 0; i < study.overlaps.size(); ++i) {
+        const Overlap &o = study.overlaps[i];
+        j.raw(i ? ",\n{" : "\n{");
+        j.key("a");
+        j.string(study.runs[o.a].run.id);
+        j.raw(",");
+        j.key("b");
+        j.string(study.runs[o.b].run.id);
+        j.raw(",");
+        j.key("shared");
+        j.number(static_cast<double>(o.shared));
+        j.raw(",");
+        j.key("only_a");
+        j.number(static_cast<double>(o.only_a));
+        j.raw(",");
+        j.key("only_b");
+        j.number(static_cast<double>(o.only_b));
+        j.raw(",");
+        j.key("jaccard");
+        j.number(o.jaccard);
+        j.raw("}");
+    }
+    j.raw("\n]");
+    if (!study.truth_source.empty()) {
+        j.raw(",\n");
+        j.key("truth");
+        j.raw("{");
+        j.key("source");
+        j.string(study.truth_source);
+        j.raw(",");
+        j.key("labels");
+        j.raw("[");
+        for (std::size_t t = 0; t < study.truth.size(); ++t) {
+            const TruthScore &score = study.truth[t];
+            j.raw(t ? ",\n{" : "\n{");
+            j.key("label");
+            j.number(score.truth_label);
+            j.raw(",");
+            j.key("voxels");
+            j.number(static_cast<double>(score.voxels));
+            j.raw(",");
+            j.key("dice");
+            j.raw("{");
+            for (std::size_t r = 0; r < study.runs.size(); ++r) {
+                if (r)
+                    j.raw(",");
+                j.key(study.runs[r].run.id.c_str());
+                j.raw("{");
+                j.key("dice");
+                j.number(score.best[r].dice);
+                j.raw(",");
+                j.key("kept_label");
+                j.number(score.best[r].kept_label);
+                j.raw("}");
+            }
+            j.raw("}}");
+        }
+        j.raw("\n]}");
+    }
+    j.raw(",\n");
+    j.key("images");
+    j.raw("[");
+    for (std::size_t i = 0; i < study.images.size(); ++i) {
+        if (i)
+            j.raw(",");
+        j.string(study.images[i]);
+    }
+    j.raw("]\n}\n");
+    file.commit();
+}
+
+void write_report_csv(const std::filesystem::path &path, const ComparisonStudy &study)
+{
+    const topology::ContourTree &tree = study.topology->tree;
+    AtomicFile file(path);
+    file.write("simplifier,label,branch,kind,importance,extremum_vertex,extremum_x_mm,extremum_y_mm,extremum_z_mm,"
+               "extremum_value,saddle_value");
+    for (int m = 0; m < topology::kMeasureCount; ++m)
+        file.write(std::string(",") + topology::measure_id(m));
+    for (int m = 0; m < topology::kMeasureCount; ++m)
+        file.write(std::string(",relative_") + topology::measure_id(m));
+    file.write("\n");
+    for (const ComparedSimplifier &c : study.runs) {
+        const topology::BranchDecomposition &d = c.run.branches;
+        for (std::size_t k = 0; k < c.run.cut.kept.size(); ++k) {
+            const uint32_t b = c.run.cut.kept[k];
+            const topology::Branch &br = d.branches[b];
+            const uint32_t ext = tree.node_vertex[br.extremum_node];
+            const auto pos = study.volume->geometry().position_of(ext);
+            std::ostringstream row;
+            row.precision(10);
+            row << csv_text(c.run.id) << ',' << k << ',' << b << ',' << branch_kind_name(br.kind) << ','
+                << (std::isinf(br.importance) ? 1.0 : br.importance) << ',' << ext << ',' << pos[0] << ',' << pos[1]
+                << ',' << pos[2] << ',' << study.volume->value(ext) << ','
+                << study.volume->value(tree.node_vertex[br.saddle_node]);
+            for (int m = 0; m < topology::kMeasureCount; ++m)
+                row << ',' << br.measures[static_cast<std::size_t>(m)];
+            for (int m = 0; m < topology::kMeasureCount; ++m)
+                row << ',' << d.relative(b, m);
+            file.write(row.str() + "\n");
+        }
+    }
+    file.commit();
+}
+
+void write_report_markdown(const std::filesystem::path &path, const ComparisonStudy &study)
+{
+    const topology::TopologyResult &topo = *study.topology;
+    const Geometry &g = study.volume->geometry();
+    std::ostringstream md;
+    md << "# Simplifier comparison: " << study.source << "\n\n";
+    md << "Volume " << g.dims[0] << " x " << g.dims[1] << " x " << g.dims[2] << ", contour tree of "
+       << topo.tree.node_count() << " nodes computed once in " << fixed(topo.total_seconds, 3)
+       << " s; every simplifier decomposes that tree with its own importance and is cut to "
+       << study.request.describe() << ".\n\n";
+    md << "| simplifier | version | branches | kept | seconds |\n|---|---|---:|---:|---:|\n";
+    for (const ComparedSimplifier &c : study.runs)
+        md << "| " << c.run.id << " | " << c.run.version << " | " << c.run.branches.branches.size() << " | "
+           << c.run.cut.kept.size() << " | " << fixed(c.run.seconds, 3) << " |\n";
+
+    md << "\n## Overlap of the kept sets\n\nKept branches of two simplifiers are the same structure when the extremum of each lies in the region the other labels; the root is left out.\n\n";
+    md << "| a | b | shared | only a | only b | Jaccard |\n|---|---|---:|---:|---:|---:|\n";
+    for (const Overlap &o : study.overlaps)
+        md << "| " << study.runs[o.a].run.id << " | " << study.runs[o.b].run.id << " | " << o.shared << " | "
+           << o.only_a << " | " << o.only_b << " | " << fixed(o.jaccard, 3) << " |\n";
+
+    if (!study.truth_source.empty()) {
+        md << "\n## Ground truth (" << study.truth_source << ")\n\nDice of each ground-truth label with the "
+           << "best-matching kept branch region.\n\n| truth label | voxels |";
+        for (const ComparedSimplifier &c : study.runs)
+            md << " " << c.run.id << " |";
+        md << "\n|---:|---:|";
+        for (std::size_t r = 0; r < study.runs.size(); ++r)
+            md << "---:|";
+        md << "\n";
+        for (const TruthScore &t : study.truth) {
+            md << "| " << t.truth_label << " | " << t.voxels << " |";
+            for (const TruthMatch &m : t.best)
+                md << " " << fixed(m.dice, 3) << " (label " << m.kept_label << ") |";
+            md << "\n";
+        }
+    }
+
+    const topology::ContourTree &tree = topo.tree;
+    for (const ComparedSimplifier &c : study.runs) {
+        md << "\n## " << c.run.name << " (" << c.run.id << ")\n\n"
+           << "| label | kind | extremum (mm) | value | persistence | volume (mm3) | importance |\n"
+           << "|---:|---|---|---:|---:|---:|---:|\n";
+        for (std::size_t k = 0; k < c.run.cut.kept.size(); ++k) {
+            const topology::Branch &br = kept_branch(c, k);
+            const uint32_t ext = tree.node_vertex[br.extremum_node];
+            const auto pos = g.position_of(ext);
+            md << "| " << k << " | " << branch_kind_name(br.kind) << " | (" << fixed(pos[0], 1) << ", "
+               << fixed(pos[1], 1) << ", " << fixed(pos[2], 1) << ") | " << general(study.volume->value(ext))
+               << " | " << general(br.measures[topology::kPersistence]) << " | "
+               << general(br.measures[topology::kVolumeMm3]) << " | "
+               << (std::isinf(br.importance) ? std::string("root") : general(br.importance)) << " |\n";
+        }
+    }
+    if (!study.images.empty()) {
+        md << "\n## Images\n\n";
+        for (const std::string &image : study.images)
+            md << "![" << image << "](" << image << ")\n\n";
+    }
+    AtomicFile file(path);
+    file.write(md.str());
+    file.commit();
+}
+
+} // namespace arbor::cli

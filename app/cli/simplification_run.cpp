@@ -1,0 +1,141 @@
+#include "simplification_run.hpp"
+
+#include "branch_json.hpp"
+
+#include "host/simplifier_importance.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace arbor::cli {
+
+std::string CutRequest::describe() const
+{
+    std::ostringstream s;
+    if (keep)
+        s << "keep " << *keep;
+    else if (threshold)
+        s << "threshold " << *threshold;
+    else
+        s << "no cut";
+    return s.str();
+}
+
+void add_cut_options(CLI::App &command, CutRequest &cut, const std::string &threshold_help)
+{
+    auto *keep = command.add_option("--keep", cut.keep, "Keep the N most important branches (root included)")
+                     ->check(CLI::PositiveNumber);
+    auto *threshold = command.add_option("--threshold", cut.threshold, threshold_help)->check(CLI::Range(0.0, 1.0));
+    keep->excludes(threshold);
+}
+
+void write_cut(JsonStream &j, const CutRequest &cut)
+{
+    j.key("cut");
+    j.raw("{");
+    if (cut.keep) {
+        j.key("keep");
+        j.number(static_cast<double>(*cut.keep));
+    } else {
+        j.key("threshold");
+        j.number(cut.threshold.value_or(0.0));
+    }
+    j.raw("}");
+}
+
+SimplifiedTree simplify_tree(const topology::ContourTree &tree, const Volume &volume, PluginInstance &simplifier,
+                             const CutRequest &request, Context &context)
+{
+    const auto start = std::chrono::steady_clock::now();
+    SimplifiedTree out;
+    out.id = simplifier.id();
+    out.name = simplifier.descriptor().name;
+    out.version = simplifier.descriptor().version;
+    const topology::ImportanceFn importance = simplifier_importance(simplifier);
+    {
+        Task task(&context.progress); // owns the progress display
+        const topology::FieldView field{volume.type(), volume.data(), static_cast<uint32_t>(volume.voxel_count()),
+                                        &volume.geometry()};
+        const std::string stage = "branches by " + out.id;
+        out.branches = topology::decompose_branches(tree, field, importance, [&](double f) {
+            if (cancellation_requested())
+                throw std::runtime_error("cancelled");
+            context.progress.report(stage, f);
+        });
+    }
+    if (request.keep)
+        out.cut = topology::cut_by_count(out.branches, *request.keep);
+    else
+        out.cut = topology::cut_by_threshold(out.branches, request.threshold.value_or(0.0));
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+std::vector<std::string> kept_label_names(const topology::BranchDecomposition &d,
+                                          const topology::SimplificationCut &cut)
+{
+    std::vector<std::string> names;
+    names.reserve(cut.kept.size());
+    for (const uint32_t b : cut.kept) {
+        const topology::BranchKind k = d.branches[b].kind;
+        names.push_back(k == topology::BranchKind::Root ? std::string("root")
+                                                         : (k == topology::BranchKind::Maximum ? "max-" : "min-") +
+                                                               std::to_string(b));
+    }
+    return names;
+}
+
+std::vector<uint32_t> kept_depths(const topology::SimplificationCut &cut)
+{
+    std::vector<uint32_t> depth(cut.kept.size(), 0);
+    for (std::size_t k = 1; k < cut.kept.size(); ++k)
+        depth[k] = depth[static_cast<std::size_t>(cut.kept_parent[k])] + 1; // parents come first
+    return depth;
+}
+
+void write_kept_branches(JsonStream &j, const topology::ContourTree &tree, const Volume &volume,
+                         const SimplifiedTree &s)
+{
+    const topology::BranchDecomposition &d = s.branches;
+    const std::vector<uint32_t> depth = kept_depths(s.cut);
+    j.raw("[");
+    for (std::size_t k = 0; k < s.cut.kept.size(); ++k) {
+        const uint32_t b = s.cut.kept[k];
+        const topology::Branch &br = d.branches[b];
+        j.raw(k ? ",\n{" : "\n{");
+        j.key("label");
+        j.number(static_cast<double>(k));
+        j.raw(",");
+        j.key("branch");
+        j.number(b);
+        j.raw(",");
+        j.key("parent_label");
+        j.number(s.cut.kept_parent[k]);
+        j.raw(",");
+        j.key("kind");
+        j.string(branch_kind_name(br.kind));
+        j.raw(",");
+        j.key("depth");
+        j.number(depth[k]);
+        j.raw(",");
+        j.key("importance");
+        j.number(std::isinf(br.importance) ? 1.0 : br.importance);
+        j.raw(",");
+        j.key("extremum");
+        write_tree_point(j, tree, volume, br.extremum_node);
+        j.raw(",");
+        j.key("saddle");
+        write_tree_point(j, tree, volume, br.saddle_node);
+        j.raw(",");
+        j.key("measures");
+        write_measures(j, br.measures);
+        j.raw(",");
+        j.key("relative_measures");
+        write_relative_measures(j, d, b);
+        j.raw("}");
+    }
+    j.raw("\n]");
+}
+
+} // namespace arbor::cli
