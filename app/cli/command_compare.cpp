@@ -6,7 +6,7 @@
 #include "comparison_report.hpp"
 #include "label_slices.hpp"
 #include "priority_lines.hpp"
-#include "simplifier_input.hpp"
+#include "plugin_choice.hpp"
 #include "topology_run.hpp"
 #include "volume_input.hpp"
 
@@ -25,7 +25,7 @@ namespace {
 
 struct CompareArgs {
     VolumeInput input;
-    SimplifierInput simplifiers;
+    PluginChoice simplifiers{ARBOR_KIND_SIMPLIFIER, "simplifier"};
     std::string list = "itri,persistence,volume,hypervolume";
     CutRequest cut;
     std::string out, truth;
@@ -117,7 +117,7 @@ void add_compare_command(CLI::App &app, Context &context)
     sub->add_option("--out", a->out, "Folder for report.json, report.csv, report.md and the PNGs")->required();
     sub->add_option("--truth", a->truth,
                     "Ground-truth label map with the volume's dims (any importable format): Dice per label");
-    a->simplifiers.add_to(*sub, context);
+    a->simplifiers.add_to(*sub, context, "Simplifier options");
     context.add_command(sub, [a, &context]() {
         if (!a->cut.keep && !a->cut.threshold)
             throw std::invalid_argument("give --keep N or --threshold T");

@@ -6,7 +6,7 @@
 #include "commands.hpp"
 #include "label_map_output.hpp"
 #include "simplification_run.hpp"
-#include "simplifier_input.hpp"
+#include "plugin_choice.hpp"
 #include "topology_run.hpp"
 #include "volume_input.hpp"
 
@@ -19,7 +19,7 @@ namespace {
 
 struct SimplifyArgs {
     VolumeInput input;
-    SimplifierInput simplifiers;
+    PluginChoice simplifiers{ARBOR_KIND_SIMPLIFIER, "simplifier"};
     std::string simplifier = "itri";
     CutRequest cut;
     std::string json, labels;
@@ -95,7 +95,7 @@ void add_simplify_command(CLI::App &app, Context &context)
     sub->add_option("--labels", a->labels,
                     "Write the voxel -> branch label map as NRRD, with a 3D Slicer colour table (.ctbl) beside it");
     sub->add_flag("--timings", a->timings, "Print per-stage seconds and peak memory on stderr");
-    a->simplifiers.add_to(*sub, context);
+    a->simplifiers.add_to(*sub, context, "Simplifier options");
     context.add_command(sub, [a, &context]() {
         if (!a->cut.keep && !a->cut.threshold)
             throw std::invalid_argument("give --keep N or --threshold T");

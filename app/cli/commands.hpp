@@ -15,5 +15,6 @@ void add_pairs_command(CLI::App &app, Context &context);
 void add_tree_command(CLI::App &app, Context &context);
 void add_simplify_command(CLI::App &app, Context &context);
 void add_compare_command(CLI::App &app, Context &context);
+void add_tf_command(CLI::App &app, Context &context);
 
 } // namespace arbor::cli

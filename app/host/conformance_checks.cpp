@@ -3,6 +3,7 @@
 #include "conformance_fixtures.hpp"
 #include "descriptor_rules.hpp"
 #include "host_services.hpp"
+#include "tf_generation.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -516,7 +517,7 @@ private:
         request.selected_branch = 1;
         request.tree = &tree.record();
         run("depictor invalid arguments", [&] {
-            FixtureDepiction out(3);
+            DepictionRecord out(3);
             FixtureImage image(16, 16);
             arbor_bool32 related = 0;
             if (auto e = expect(t.depict(p_, nullptr, &out.record(), task.get()),
@@ -540,7 +541,7 @@ private:
             return std::string();
         });
         run("depictor on a small tree", [&] {
-            FixtureDepiction out(3);
+            DepictionRecord out(3);
             if (auto e = expect(t.depict(p_, &request, &out.record(), task.get()), ARBOR_OK, "depict");
                 !e.empty())
                 return e;

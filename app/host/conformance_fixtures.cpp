@@ -42,40 +42,25 @@ FixtureVolume::FixtureVolume(arbor_voxel_type type, int64_t n)
 }
 
 FixtureTree::FixtureTree()
-    : parent_{-1, 0, 0}, depth_{0, 1, 1}, offsets_{0, 2, 2, 2}, children_{1, 2},
-      kind_{ARBOR_EXTREMUM_MAXIMUM, ARBOR_EXTREMUM_MAXIMUM, ARBOR_EXTREMUM_MINIMUM},
-      saddle_vertex_{0, 10, 20}, extremum_vertex_{511, 300, 100},
-      saddle_value_{0, 40, 60}, extremum_value_{100, 90, 10},
-      saddle_position_{0, 0, 0, 2, 1, 0, 4, 2, 0}, extremum_position_{7, 7, 7, 4, 5, 4, 4, 4, 1},
-      ids_{ARBOR_MEASURE_PERSISTENCE, ARBOR_MEASURE_VOLUME, ARBOR_MEASURE_VOLUME_MM3,
-           ARBOR_MEASURE_HYPERVOLUME, ARBOR_MEASURE_RELATIVE_HYPERVOLUME}
 {
+    BranchTreeArrays &a = arrays_;
+    a.resize(3);
+    a.parent = {-1, 0, 0};
+    a.kind = {ARBOR_EXTREMUM_MAXIMUM, ARBOR_EXTREMUM_MAXIMUM, ARBOR_EXTREMUM_MINIMUM};
+    a.saddle_vertex = {0, 10, 20};
+    a.extremum_vertex = {511, 300, 100};
+    a.saddle_value = {0, 40, 60};
+    a.extremum_value = {100, 90, 10};
+    a.saddle_position = {0, 0, 0, 2, 1, 0, 4, 2, 0};
+    a.extremum_position = {7, 7, 7, 4, 5, 4, 4, 4, 1};
     // persistence, volume, volume-mm3, hypervolume, relative hypervolume
-    measures_ = {100, 512, 512, 25600, 25600,
-                 50,  40,  40,  3200,  1000,
-                 50,  30,  30,  600,   800};
-    relative_.resize(measures_.size());
+    a.measures = {100, 512, 512, 25600, 25600,
+                  50,  40,  40,  3200,  1000,
+                  50,  30,  30,  600,   800};
     for (std::size_t r = 0; r < 3; ++r)
         for (std::size_t c = 0; c < 5; ++c)
-            relative_[r * 5 + c] = measures_[r * 5 + c] / measures_[c];
-    record_.struct_size = sizeof(record_);
-    record_.branch_count = 3;
-    record_.measure_count = 5;
-    record_.parent = parent_.data();
-    record_.depth = depth_.data();
-    record_.child_offsets = offsets_.data();
-    record_.children = children_.data();
-    record_.extremum_kind = kind_.data();
-    record_.saddle_vertex = saddle_vertex_.data();
-    record_.extremum_vertex = extremum_vertex_.data();
-    record_.saddle_value = saddle_value_.data();
-    record_.extremum_value = extremum_value_.data();
-    record_.saddle_position = saddle_position_.data();
-    record_.extremum_position = extremum_position_.data();
-    record_.measure_ids = ids_.data();
-    record_.measures = measures_.data();
-    record_.relative_measures = relative_.data();
-    record_.importance = nullptr;
+            a.relative[r * 5 + c] = a.measures[r * 5 + c] / a.measures[c];
+    a.link();
 }
 
 arbor_measure_rows FixtureTree::rows() const
@@ -83,10 +68,10 @@ arbor_measure_rows FixtureTree::rows() const
     arbor_measure_rows r{};
     r.struct_size = sizeof(r);
     r.row_count = 3;
-    r.measure_count = 5;
-    r.measure_ids = ids_.data();
-    r.measures = measures_.data();
-    r.relative_measures = relative_.data();
+    r.measure_count = BranchTreeArrays::kMeasureCount;
+    r.measure_ids = BranchTreeArrays::kMeasureIds;
+    r.measures = record().measures;
+    r.relative_measures = record().relative_measures;
     return r;
 }
 
@@ -95,19 +80,6 @@ arbor_measure_rows FixtureTree::schema() const
     arbor_measure_rows r = rows();
     r.row_count = 0;
     return r;
-}
-
-FixtureDepiction::FixtureDepiction(uint32_t n)
-    : role_(n, ARBOR_ROLE_OTHER), at_saddle_(n, 1.0f), at_extremum_(n, 1.0f),
-      hue_(n, std::numeric_limits<float>::quiet_NaN()), saturation_(n, 1.0f)
-{
-    record_.struct_size = sizeof(record_);
-    record_.branch_count = n;
-    record_.role = role_.data();
-    record_.opacity_at_saddle = at_saddle_.data();
-    record_.opacity_at_extremum = at_extremum_.data();
-    record_.hue = hue_.data();
-    record_.saturation = saturation_.data();
 }
 
 FixtureTfSet::FixtureTfSet(uint32_t n, uint32_t lut_size)

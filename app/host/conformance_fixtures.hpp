@@ -3,6 +3,8 @@
 // three-branch tree with measures, transfer functions, a camera, an image.
 #pragma once
 
+#include "branch_tree_arrays.hpp"
+
 #include <arbor/arbor.h>
 
 #include <cstdint>
@@ -23,36 +25,20 @@ private:
 
 // Root branch 0 (minimum 0 .. maximum 100) with a maximum child (branch 1,
 // saddle 40 .. 90) and a minimum child (branch 2, saddle 60 .. 10).
+// A 3-branch tree: a root with a maximum and a minimum child.
 class FixtureTree {
 public:
     FixtureTree();
-    const arbor_branch_tree &record() const { return record_; }
-    arbor_measure_rows rows() const;        // every branch as a row
-    arbor_measure_rows schema() const;      // columns only
+    const arbor_branch_tree &record() const { return arrays_.record(); }
+    arbor_measure_rows rows() const;   // every branch as a row
+    arbor_measure_rows schema() const; // columns only
 
 private:
-    std::vector<int32_t> parent_;
-    std::vector<uint32_t> depth_, offsets_, children_;
-    std::vector<arbor_extremum_kind> kind_;
-    std::vector<int64_t> saddle_vertex_, extremum_vertex_;
-    std::vector<double> saddle_value_, extremum_value_, saddle_position_, extremum_position_;
-    std::vector<const char *> ids_;
-    std::vector<double> measures_, relative_;
-    arbor_branch_tree record_{};
+    BranchTreeArrays arrays_;
 };
 
-// Output records with host-owned arrays, sized for `branches`.
-class FixtureDepiction {
-public:
-    explicit FixtureDepiction(uint32_t branches);
-    arbor_depiction &record() { return record_; }
-
-private:
-    std::vector<arbor_branch_role> role_;
-    std::vector<float> at_saddle_, at_extremum_, hue_, saturation_;
-    arbor_depiction record_{};
-};
-
+// Output records with host-owned arrays, sized for `branches` (depictions:
+// DepictionRecord, tf_generation.hpp).
 class FixtureTfSet {
 public:
     FixtureTfSet(uint32_t branches, uint32_t lut_size);

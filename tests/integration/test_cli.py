@@ -443,6 +443,7 @@ class Simplify(unittest.TestCase):
         self.assertEqual(r["overlaps"][0]["jaccard"], 1.0)
 
     def test_bad_simplifiers_and_arguments_are_refused_clearly(self):
+        (SCRATCH / "bad.json").unlink(missing_ok=True)
         for library, id_ in (("fixture-simplifier-nan", "org.arbor.test.simplifier.nan"),
                              ("fixture-simplifier-negative", "org.arbor.test.simplifier.negative")):
             code, _, err = arbor("simplify", "--phantom", "head", "--phantom-size", 32, "--simplifier", id_,
@@ -468,3 +469,99 @@ class Simplify(unittest.TestCase):
                              "volume", "--keep", 3, "--json", SCRATCH / "x.json", check=False)
         self.assertNotEqual(code, 0)
         self.assertIn("at least two measures", err)
+
+
+def srgb_to_lab(c):
+    def lin(u):
+        return u / 12.92 if u <= 0.04045 else ((u + 0.055) / 1.055) ** 2.4
+    r, g, b = map(lin, c[:3])
+    x, y, z = (0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047, 0.2126 * r + 0.7152 * g + 0.0722 * b, \
+        (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883
+    f = lambda t: t ** (1 / 3) if t > (6 / 29) ** 3 else t / (3 * (6 / 29) ** 2) + 4 / 29
+    return 116 * f(y) - 16, 500 * (f(x) - f(y)), 200 * (f(y) - f(z))
+
+
+class TransferFunctionsCli(unittest.TestCase):
+    NOISY = ("--phantom", "head", "--phantom-noise", 8)
+
+    def tf(self, *args, name="tf.json"):
+        out = SCRATCH / name
+        arbor("tf", *args, "-o", out)
+        return json.loads(out.read_text())
+
+    def test_phantom_transfer_functions_file(self):
+        j = self.tf(*self.NOISY, "--keep", 12, "--lut-size", 32)
+        self.assertEqual(j["format"], "arbor-transfer-functions/1")
+        self.assertEqual(j["generator"]["id"], "org.arbor.tf.residue-flow")
+        self.assertEqual(j["depictor"]["id"], "org.arbor.depictor.inclusion")
+        self.assertEqual(j["simplifier"], {"id": "org.arbor.simplifier.itri", "cut": "keep 12"})
+        self.assertEqual(len(j["branches"]), 12)
+        for b in j["branches"]:
+            self.assertEqual(len(b["lut"]), 32)
+            self.assertLessEqual(b["domain"][0], b["domain"][1])
+            self.assertGreaterEqual(len(b["points"]), 2)
+            self.assertTrue(all(0 <= x <= 1 for entry in b["lut"] for x in entry))
+            values = [p["value"] for p in b["points"]]
+            self.assertEqual(values, sorted(values))
+        # Inner branches are more opaque than the branches that include them.
+        by_label = {b["label"]: b for b in j["branches"]}
+        for b in j["branches"][1:]:
+            self.assertGreater(b["opacity_range"][1], by_label[b["parent"]]["opacity_range"][1])
+        # The tumour (the deepest branch) is the most opaque, the skin (root) the least.
+        tumour = max(j["branches"], key=lambda b: b["depth"])
+        v, h = tumour["extremum_vertex"], 200 / 128
+        position = [(-63.5 + i) * h for i in (v % 128, v // 128 % 128, v // 128 ** 2)]
+        self.assertLess(sum((a - c) ** 2 for a, c in zip(position, (-27, 47, 10))), 8 ** 2)
+        self.assertEqual(max(j["branches"], key=lambda b: b["opacity_range"][1])["label"], tumour["label"])
+        self.assertEqual(min(j["branches"], key=lambda b: b["opacity_range"][1])["label"], 0)
+
+    def test_flow_rate_moves_opacity_inwards_without_changing_colours(self):
+        low = self.tf(*self.NOISY, "--keep", 12, "--flow-rate", 10, "--relation", "none", name="q10.json")
+        high = self.tf(*self.NOISY, "--keep", 12, "--flow-rate", 250, "--relation", "none", name="q250.json")
+        band = lambda b: b["opacity_range"][1] - b["opacity_range"][0]
+        self.assertLess(band(high["branches"][0]), band(low["branches"][0]))
+        deepest = max(range(12), key=lambda i: low["branches"][i]["depth"])
+        self.assertGreater(band(high["branches"][deepest]), band(low["branches"][deepest]))
+        for a, b in zip(low["branches"], high["branches"]):
+            self.assertEqual(a["rgba_at_extremum"][:3], b["rgba_at_extremum"][:3])
+
+    def test_neighbour_relation_with_legend_and_harmonic_hues(self):
+        legend = SCRATCH / "wheel.png"
+        arbor("tf", *self.NOISY, "--keep", 12, "--relation", "neighbour", "--select", 4, "--hues", "X:30",
+              "--shape", "peak", "--legend", legend, "-o", SCRATCH / "neighbour.json")
+        j = json.loads((SCRATCH / "neighbour.json").read_text())
+        self.assertEqual(j["depictor"]["id"], "org.arbor.depictor.neighbour")
+        self.assertEqual(j["depictor"]["parameters"]["rotation"], "0")
+        self.assertEqual(j["generator"]["parameters"]["hues"], "X:30")
+        roles = {b["label"]: b["role"] for b in j["branches"]}
+        self.assertEqual(roles[4], "selected")
+        self.assertEqual(roles[j["branches"][4]["parent"]], "parent")
+        for b in j["branches"]:
+            if b["parent"] == 4:
+                self.assertEqual(b["role"], "child")
+        self.assertEqual(png_size(legend), (512, 512))
+
+    def test_baseline_and_real_volume(self):
+        j = self.tf(DATA / "tooth/tooth.nhdr", "--generator", "histogram-ramp", "--keep", 8, name="tooth-tf.json")
+        self.assertEqual(j["generator"]["id"], "org.arbor.tf.histogram-ramp")
+        self.assertEqual(len(j["branches"]), 8)
+        j = self.tf(DATA / "engine/engine.vti", "--keep", 20, name="engine-tf.json")
+        self.assertEqual(len(j["branches"]), 20)
+
+    def test_bad_arguments_are_refused_clearly(self):
+        cases = [
+            (("--relation", "neighbour"), "needs --select"),
+            (("--select", 99), "has 12 branches"),
+            (("--hues", "Q"), "unknown hue template"),
+            (("--legend", SCRATCH / "w.png"), "draws no legend"),
+            (("--shape", "spiral"), "shape"),
+            (("--generator", "magic"), "no transfer-function generator 'magic'"),
+        ]
+        (SCRATCH / "bad-tf.json").unlink(missing_ok=True)
+        for args, message in cases:
+            with self.subTest(args=args):
+                code, _, err = arbor("tf", "--phantom", "head", "--phantom-size", 32, *args, "-o",
+                                     SCRATCH / "bad-tf.json", check=False)
+                self.assertNotEqual(code, 0)
+                self.assertIn(message, err)
+                self.assertFalse((SCRATCH / "bad-tf.json").exists())

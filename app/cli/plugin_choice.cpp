@@ -1,33 +1,33 @@
-#include "simplifier_input.hpp"
+#include "plugin_choice.hpp"
 
 #include <stdexcept>
 
 namespace arbor::cli {
 
-void SimplifierInput::add_to(CLI::App &command, Context &context)
+void PluginChoice::add_to(CLI::App &command, Context &context, const std::string &group)
 {
-    for (const PluginInfo *info : context.registry.plugins_of_kind(ARBOR_KIND_SIMPLIFIER)) {
+    for (const PluginInfo *info : context.registry.plugins_of_kind(kind_)) {
         try {
-            simplifiers_.push_back(context.registry.create(info->descriptor->id));
+            plugins_.push_back(context.registry.create(info->descriptor->id));
         } catch (const PluginError &e) {
             log_message(ARBOR_LOG_WARNING, "", e.what());
         }
     }
     std::vector<PluginInstance *> ptrs;
-    for (PluginInstance &p : simplifiers_)
+    for (PluginInstance &p : plugins_)
         ptrs.push_back(&p);
-    options_.add(command, "Simplifier options", ptrs);
+    options_.add(command, group, ptrs);
 }
 
-PluginInstance &SimplifierInput::resolve(const std::string &name)
+PluginInstance &PluginChoice::resolve(const std::string &name)
 {
     PluginInstance *found = nullptr;
-    for (PluginInstance &p : simplifiers_)
+    for (PluginInstance &p : plugins_)
         if (p.id() == name)
             found = &p;
     if (!found) {
         std::vector<PluginInstance *> by_suffix;
-        for (PluginInstance &p : simplifiers_) {
+        for (PluginInstance &p : plugins_) {
             const std::string id = p.id();
             if (id.size() > name.size() && id.compare(id.size() - name.size(), name.size(), name) == 0 &&
                 id[id.size() - name.size() - 1] == '.')
@@ -38,9 +38,9 @@ PluginInstance &SimplifierInput::resolve(const std::string &name)
     }
     if (!found) {
         std::string known;
-        for (const PluginInstance &p : simplifiers_)
+        for (const PluginInstance &p : plugins_)
             known += (known.empty() ? "" : ", ") + p.id();
-        throw std::invalid_argument("no simplifier '" + name + "' (there are: " +
+        throw std::invalid_argument("no " + noun_ + " '" + name + "' (there are: " +
                                     (known.empty() ? "none - see `arbor plugins`" : known) + ")");
     }
     options_.apply(*found);

@@ -1,0 +1,35 @@
+// transfer_function_json.hpp - our versioned file format for per-branch
+// transfer functions, "arbor-transfer-functions/1": for every kept branch
+// its value domain, control points (the editable form) and the baked RGBA
+// lookup table (what renderers use), plus everything needed to reproduce
+// it: the generator and depictor with their parameters, the simplifier and
+// its cut.
+#pragma once
+
+#include "json_stream.hpp"
+
+#include "host/plugin_instance.hpp"
+#include "host/tf_generation.hpp"
+
+#include <arbor/branch_tree.h>
+
+#include <string>
+
+namespace arbor::cli {
+
+struct TransferFunctionFile {
+    std::string source;          // the volume
+    std::string simplifier_id;   // and its cut ("keep 12")
+    std::string cut;
+    const PluginInstance *generator = nullptr;
+    const PluginInstance *depictor = nullptr; // may be null
+    int32_t selected_branch = -1;
+    double value_range[2] = {0, 0};
+    const arbor_branch_tree *tree = nullptr;
+    const arbor_depiction *depiction = nullptr; // may be null
+    const TransferFunctions *functions = nullptr;
+};
+
+void write_transfer_functions(const std::string &path, const TransferFunctionFile &f);
+
+} // namespace arbor::cli

@@ -1,0 +1,26 @@
+// branch_tree_record.hpp - the kept branches of a simplified decomposition as
+// the SDK's arbor_branch_tree, the record depictors and transfer-function
+// generators work on.  Branch k of the record is kept label k of the cut, so
+// label maps index it directly.
+#pragma once
+
+#include "branch_tree_arrays.hpp"
+
+#include "core/volume.hpp"
+#include "topology/simplification.hpp"
+
+namespace arbor {
+
+class BranchTreeRecord {
+public:
+    BranchTreeRecord(const topology::ContourTree &tree, const topology::BranchDecomposition &d,
+                     const topology::SimplificationCut &cut, const Volume &volume);
+
+    const arbor_branch_tree &record() const { return arrays_.record(); }
+    uint32_t size() const { return record().branch_count; }
+
+private:
+    BranchTreeArrays arrays_;
+};
+
+} // namespace arbor

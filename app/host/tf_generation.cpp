@@ -1,0 +1,87 @@
+#include "tf_generation.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace arbor {
+
+DepictionRecord::DepictionRecord(uint32_t branches)
+    : role_(branches, ARBOR_ROLE_OTHER), at_saddle_(branches, 1.0f), at_extremum_(branches, 1.0f),
+      hue_(branches, std::numeric_limits<float>::quiet_NaN()), saturation_(branches, 1.0f)
+{
+    record_.struct_size = sizeof record_;
+    record_.branch_count = branches;
+    record_.role = role_.data();
+    record_.opacity_at_saddle = at_saddle_.data();
+    record_.opacity_at_extremum = at_extremum_.data();
+    record_.hue = hue_.data();
+    record_.saturation = saturation_.data();
+}
+
+TransferFunctions::TransferFunctions(uint32_t branches, uint32_t lut_size, double opacity_unit_distance)
+    : domain_(2 * std::size_t{branches}, 0.0), lut_(std::size_t{branches} * lut_size * 4, 0.0f),
+      offsets_(std::size_t{branches} + 1, 0)
+{
+    record_.struct_size = sizeof record_;
+    record_.branch_count = branches;
+    record_.lut_size = lut_size;
+    record_.opacity_unit_distance = opacity_unit_distance;
+    record_.domain = domain_.data();
+    record_.lut = lut_.data();
+    record_.point_offsets = offsets_.data();
+}
+
+void depict(PluginInstance &depictor, const arbor_depiction_request &request, DepictionRecord &out,
+            ProgressSink *progress)
+{
+    const auto &table = depictor.interface<arbor_depictor_v1>(ARBOR_INTERFACE_DEPICTOR);
+    Task task(progress);
+    depictor.check(table.depict(depictor.get(), &request, &out.record(), task.get()), "depicting the branches");
+    const arbor_depiction &d = out.record();
+    for (uint32_t b = 0; b < d.branch_count; ++b) {
+        const float v[] = {d.opacity_at_saddle[b], d.opacity_at_extremum[b], d.saturation[b]};
+        for (float x : v)
+            if (!(x >= 0.0f && x <= 1.0f))
+                throw PluginError(ARBOR_ERROR_OUT_OF_RANGE, depictor.id() + " returned a factor " + std::to_string(x) +
+                                                                " outside [0, 1] for branch " + std::to_string(b));
+        if (!std::isnan(d.hue[b]) && !(d.hue[b] >= 0.0f && d.hue[b] < 360.0f))
+            throw PluginError(ARBOR_ERROR_OUT_OF_RANGE,
+                              depictor.id() + " returned hue " + std::to_string(d.hue[b]) + " for branch " +
+                                  std::to_string(b));
+    }
+}
+
+void generate_transfer_functions(PluginInstance &generator, const arbor_tf_request &request, TransferFunctions &out,
+                                 ProgressSink *progress)
+{
+    const auto &table = generator.interface<arbor_tf_generator_v1>(ARBOR_INTERFACE_TF_GENERATOR);
+    Task task(progress);
+    arbor_tf_set &set = out.record();
+    set.points = nullptr;
+    generator.check(table.generate(generator.get(), &request, &set, task.get()), "generating transfer functions");
+    const auto refuse = [&](const std::string &what) {
+        throw PluginError(ARBOR_ERROR_OUT_OF_RANGE, generator.id() + " returned " + what);
+    };
+    for (uint32_t b = 0; b < set.branch_count; ++b) {
+        if (!std::isfinite(set.domain[2 * b]) || !std::isfinite(set.domain[2 * b + 1]) ||
+            set.domain[2 * b] > set.domain[2 * b + 1])
+            refuse("a domain that is not a finite interval for branch " + std::to_string(b));
+        if (set.point_offsets[b + 1] < set.point_offsets[b])
+            refuse("decreasing point offsets");
+    }
+    for (float x : out.lut_)
+        if (!(x >= 0.0f && x <= 1.0f))
+            refuse("a lookup-table value outside [0, 1]");
+    const uint32_t points = set.point_offsets[set.branch_count];
+    if (points > 0 && !set.points)
+        refuse("point offsets counting points but no points");
+    out.points_.assign(set.points, set.points + points);
+    for (const arbor_tf_point &p : out.points_)
+        for (float x : p.rgba)
+            if (!(x >= 0.0f && x <= 1.0f) || !std::isfinite(p.value))
+                refuse("a control point outside [0, 1] or at a non-finite value");
+    set.points = out.points_.data(); // the task's memory goes with the task
+}
+
+} // namespace arbor

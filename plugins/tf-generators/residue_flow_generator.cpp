@@ -1,0 +1,150 @@
+// residue_flow_generator.cpp - org.arbor.tf.residue-flow: one transfer
+// function per branch, opacity by the residue-flow model (residue_flow.hpp)
+// shaped over the branch's interval (opacity_shape.hpp) and multiplied by
+// the depiction's factors (α = α_d · α_t), colour from the branch's place in
+// the tree (branch_colours.hpp).  It reads the branch tree only, so a change
+// of flow rate or shape regenerates without the contour tree; colours found
+// once are cached across calls.
+#include "branch_colours.hpp"
+#include "opacity_shape.hpp"
+#include "residue_flow.hpp"
+#include "tf_generator_classes.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace arbor::tf {
+
+const arbor_plugin_descriptor kResidueFlowDescriptor = {
+    sizeof(arbor_plugin_descriptor),
+    ARBOR_PLUGIN_FLAG_NONE,
+    "org.arbor.tf.residue-flow",
+    ARBOR_KIND_TF_GENERATOR,
+    "Residue flow",
+    "1.0.0",
+    "Arbor",
+    "One transfer function per branch: opacity flows from the root down the tree (Darcy head loss, flow rate Q "
+    "peels outer structures away), colours from harmonic hue templates with lightness and vividness set in CIELAB.",
+    "",
+};
+
+namespace {
+
+std::vector<sdk::ParamSpec> residue_flow_params()
+{
+    std::vector<sdk::ParamSpec> p;
+    p.push_back(sdk::ParamSpec::real("flow-rate", "Flow rate Q", 60.0, 0.0, 1e6)
+                    .group("Opacity")
+                    .hint("Raise to move opacity from outer structures to inner ones (0 .. conductivity)"));
+    p.push_back(sdk::ParamSpec::real("conductivity", "Hydraulic conductivity K", 300.0, 1e-6, 1e6)
+                    .group("Opacity")
+                    .hint("Darcy's K; 300 is water in sand. Head loss = Q p / (K n_children)"));
+    p.push_back(sdk::ParamSpec::real("alpha-min", "Minimum opacity", 0.02, 0.0, 1.0).group("Opacity"));
+    p.push_back(sdk::ParamSpec::real("alpha-range", "Opacity range", 0.9, 0.0, 1.0)
+                    .group("Opacity")
+                    .hint("What all branches on a path from the root share above the minimum"));
+    p.push_back(sdk::ParamSpec::choice("shape", "Opacity shape", opacity_shape_names(), 0,
+                                       {"ramp towards the extremum", "inverse ramp", "hat", "box",
+                                        "isovalue peak"})
+                    .group("Opacity"));
+    p.push_back(sdk::ParamSpec::real("peak-position", "Peak position", 0.5, 0.0, 1.0)
+                    .group("Opacity")
+                    .hint("Shape peak: where the isovalue lies between saddle (0) and extremum (1)"));
+    p.push_back(sdk::ParamSpec::real("peak-width", "Peak width", 0.1, 0.001, 1.0).group("Opacity"));
+    p.push_back(sdk::ParamSpec::text("hues", "Hue template", "full")
+                    .group("Colour")
+                    .hint("full, or a harmonic template i, V, L, I, T, Y, X with an optional rotation: X:30"));
+    p.push_back(sdk::ParamSpec::real("lightness-min", "Lightness min (L*)", 45.0, 0.0, 100.0).group("Colour"));
+    p.push_back(sdk::ParamSpec::real("lightness-max", "Lightness max (L*)", 85.0, 0.0, 100.0).group("Colour"));
+    p.push_back(sdk::ParamSpec::real("vividness-min", "Vividness min", 0.25, 0.0, 1.0).group("Colour"));
+    p.push_back(sdk::ParamSpec::real("vividness-max", "Vividness max", 1.0, 0.0, 1.0).group("Colour"));
+    return p;
+}
+
+class ResidueFlowGenerator final : public sdk::TfGenerator {
+public:
+    explicit ResidueFlowGenerator(const arbor_host *host)
+        : TfGenerator(kResidueFlowDescriptor, host, residue_flow_params())
+    {
+    }
+
+    void generate(const arbor_tf_request &request, const sdk::BranchTreeView &tree, arbor_tf_set &out,
+                  const sdk::Task &task) override
+    {
+        FlowParameters flow;
+        flow.flow_rate = params().number("flow-rate");
+        flow.conductivity = params().number("conductivity");
+        flow.alpha_min = params().number("alpha-min");
+        flow.alpha_range = params().number("alpha-range");
+        if (flow.alpha_min + flow.alpha_range > 1.0)
+            sdk::fail(ARBOR_ERROR_OUT_OF_RANGE, "alpha-min + alpha-range must not exceed 1");
+        ShapeSettings shape;
+        const std::string &name = params().choice("shape");
+        const auto &names = opacity_shape_names();
+        shape.shape = static_cast<OpacityShape>(std::find(names.begin(), names.end(), name) - names.begin());
+        shape.peak_position = params().number("peak-position");
+        shape.peak_width = params().number("peak-width");
+        ColourSettings colour;
+        try {
+            colour.hues = HarmonicTemplate::parse(params().text("hues"));
+        } catch (const std::invalid_argument &e) {
+            sdk::fail(ARBOR_ERROR_INVALID_ARGUMENT, std::string("hues: ") + e.what());
+        }
+        colour.lightness_min = params().number("lightness-min");
+        colour.lightness_max = params().number("lightness-max");
+        colour.vividness_min = params().number("vividness-min");
+        colour.vividness_max = params().number("vividness-max");
+
+        const std::vector<OpacityRange> ranges = residue_flow(tree, flow);
+        const std::vector<BranchColour> colours = branch_colours(tree, colour, request.depiction, cache_);
+        const std::vector<double> corners = shape_corners(shape);
+        const uint32_t n = tree.size();
+        auto *points = static_cast<arbor_tf_point *>(task.allocate(sizeof(arbor_tf_point) * corners.size() * n));
+        const arbor_depiction *depiction = request.depiction;
+        for (uint32_t b = 0; b < n; ++b) {
+            if ((b & 1023) == 0)
+                task.progress(static_cast<double>(b) / n, "transfer functions");
+            // t: 0 at the saddle, 1 at the extremum (the root: minimum to maximum).
+            const double saddle = b == 0 ? request.value_range[0] : tree.saddle_value(b);
+            const double extremum = b == 0 ? request.value_range[1] : tree.extremum_value(b);
+            const auto t_of = [&](double value) {
+                return extremum != saddle ? (value - saddle) / (extremum - saddle) : 1.0;
+            };
+            const auto rgba = [&](double t) {
+                double alpha = shape_opacity(shape, t, ranges[b].low, ranges[b].high);
+                if (depiction)
+                    alpha *= depiction->opacity_at_saddle[b] +
+                             (depiction->opacity_at_extremum[b] - depiction->opacity_at_saddle[b]) * t;
+                const Rgb &c = colours[b].rgb;
+                return std::array<float, 4>{static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b),
+                                            static_cast<float>(alpha)};
+            };
+            bake_lut(out, b, branch_domain(tree, request, b), [&](double value) { return rgba(t_of(value)); });
+            out.point_offsets[b] = static_cast<uint32_t>(b * corners.size());
+            for (std::size_t i = 0; i < corners.size(); ++i) {
+                // Points ascend in value: for minima t runs downwards.
+                const double t = saddle <= extremum ? corners[i] : corners[corners.size() - 1 - i];
+                arbor_tf_point &pt = points[b * corners.size() + i];
+                pt.value = saddle + (extremum - saddle) * t;
+                const std::array<float, 4> c = rgba(t);
+                for (int k = 0; k < 4; ++k)
+                    pt.rgba[k] = std::clamp(c[k], 0.0f, 1.0f);
+            }
+        }
+        out.point_offsets[n] = static_cast<uint32_t>(n * corners.size());
+        out.points = points;
+    }
+
+private:
+    ColourCache cache_;
+};
+
+} // namespace
+
+sdk::Instance *create_residue_flow(const arbor_host *host)
+{
+    return new ResidueFlowGenerator(host);
+}
+
+} // namespace arbor::tf
