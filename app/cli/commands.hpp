@@ -16,5 +16,7 @@ void add_tree_command(CLI::App &app, Context &context);
 void add_simplify_command(CLI::App &app, Context &context);
 void add_compare_command(CLI::App &app, Context &context);
 void add_tf_command(CLI::App &app, Context &context);
+void add_render_command(CLI::App &app, Context &context);
+void add_run_command(CLI::App &app, Context &context);
 
 } // namespace arbor::cli

@@ -22,6 +22,25 @@ std::string CutRequest::describe() const
     return s.str();
 }
 
+CutRequest CutRequest::parse(const std::string &text)
+{
+    std::istringstream in(text);
+    std::string word;
+    double x = 0;
+    CutRequest r;
+    if (in >> word >> x && in.eof()) {
+        if (word == "keep" && x >= 1 && x == std::floor(x)) {
+            r.keep = static_cast<std::size_t>(x);
+            return r;
+        }
+        if (word == "threshold" && x >= 0 && x <= 1) {
+            r.threshold = x;
+            return r;
+        }
+    }
+    throw std::invalid_argument("'" + text + "' is not a cut (\"keep N\" or \"threshold T\")");
+}
+
 void add_cut_options(CLI::App &command, CutRequest &cut, const std::string &threshold_help)
 {
     auto *keep = command.add_option("--keep", cut.keep, "Keep the N most important branches (root included)")

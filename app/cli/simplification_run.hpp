@@ -21,6 +21,8 @@ struct CutRequest {
     std::optional<double> threshold; // keep branches with importance > threshold
     std::optional<std::size_t> keep; // or the N most important (root included)
     std::string describe() const;    // "keep 12" / "threshold 0.01"
+    // The inverse of describe(); throws std::invalid_argument.
+    static CutRequest parse(const std::string &text);
 };
 
 // --keep N | --threshold T on `command` (exclusive); `what` completes the

@@ -3,6 +3,7 @@
 #include "host/param_text.hpp"
 
 #include <algorithm>
+#include <fstream>
 
 namespace arbor::cli {
 
@@ -173,6 +174,68 @@ void write_transfer_functions(const std::string &path, const TransferFunctionFil
     }
     j.raw("\n]\n}\n");
     file.commit();
+}
+
+StoredTransferFunctions read_transfer_functions(const std::string &path)
+{
+    std::ifstream in(path);
+    if (!in)
+        throw std::invalid_argument(path + ": cannot open the transfer-function file");
+    const auto bad = [&](const std::string &what) { return std::invalid_argument(path + ": " + what); };
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception &e) {
+        throw bad(std::string("not valid JSON (") + e.what() + ")");
+    }
+    if (j.value("format", "") != "arbor-transfer-functions/1")
+        throw bad("not an arbor-transfer-functions/1 file");
+    try {
+        StoredTransferFunctions out;
+        out.source = j.at("source").get<std::string>();
+        out.simplifier_id = j.at("simplifier").at("id").get<std::string>();
+        out.cut = j.at("simplifier").at("cut").get<std::string>();
+        const auto &branches = j.at("branches");
+        const uint32_t lut = j.at("lut_size").get<uint32_t>();
+        const double unit = j.at("opacity_unit_distance_mm").get<double>();
+        if (branches.empty() || lut < 2 || !(unit > 0))
+            throw bad("no branches, a lookup table shorter than 2 or a non-positive opacity unit distance");
+        out.functions = std::make_unique<TransferFunctions>(static_cast<uint32_t>(branches.size()), lut, unit);
+        std::vector<uint32_t> offsets{0};
+        std::vector<arbor_tf_point> points;
+        std::vector<float> rgba(std::size_t{lut} * 4);
+        for (uint32_t b = 0; b < branches.size(); ++b) {
+            const auto &br = branches[b];
+            out.extremum_vertex.push_back(br.at("extremum_vertex").get<int64_t>());
+            const auto &entries = br.at("lut");
+            if (entries.size() != lut)
+                throw bad("branch " + std::to_string(b) + " has " + std::to_string(entries.size()) +
+                          " lookup-table entries, not " + std::to_string(lut));
+            for (uint32_t i = 0; i < lut; ++i)
+                for (int c = 0; c < 4; ++c) {
+                    const float x = entries[i].at(static_cast<std::size_t>(c)).get<float>();
+                    if (!(x >= 0.0f && x <= 1.0f))
+                        throw bad("branch " + std::to_string(b) + ": lookup-table value outside [0, 1]");
+                    rgba[4 * i + c] = x;
+                }
+            const double lo = br.at("domain").at(0).get<double>(), hi = br.at("domain").at(1).get<double>();
+            if (!(lo <= hi))
+                throw bad("branch " + std::to_string(b) + ": domain is not an interval");
+            out.functions->assign(b, {lo, hi}, rgba.data());
+            for (const auto &p : br.at("points")) {
+                arbor_tf_point pt{};
+                pt.value = p.at("value").get<double>();
+                for (int c = 0; c < 4; ++c)
+                    pt.rgba[c] = p.at("rgba").at(static_cast<std::size_t>(c)).get<float>();
+                points.push_back(pt);
+            }
+            offsets.push_back(static_cast<uint32_t>(points.size()));
+        }
+        out.functions->assign_points(std::move(offsets), std::move(points));
+        return out;
+    } catch (const nlohmann::json::exception &e) {
+        throw bad(std::string("missing or malformed field (") + e.what() + ")");
+    }
 }
 
 } // namespace arbor::cli

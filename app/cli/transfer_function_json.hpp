@@ -13,7 +13,9 @@
 
 #include <arbor/branch_tree.h>
 
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace arbor::cli {
 
@@ -31,5 +33,17 @@ struct TransferFunctionFile {
 };
 
 void write_transfer_functions(const std::string &path, const TransferFunctionFile &f);
+
+// What `arbor render` needs back from a file: how the tree was simplified
+// (to rebuild the labels), each branch's extremum (to check the rebuilt
+// tree is the same), and the functions.
+struct StoredTransferFunctions {
+    std::string source, simplifier_id, cut;
+    std::vector<int64_t> extremum_vertex;
+    std::unique_ptr<TransferFunctions> functions;
+};
+
+// Throws std::invalid_argument naming the file and what is wrong with it.
+StoredTransferFunctions read_transfer_functions(const std::string &path);
 
 } // namespace arbor::cli

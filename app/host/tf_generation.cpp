@@ -1,5 +1,6 @@
 #include "tf_generation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -30,6 +31,21 @@ TransferFunctions::TransferFunctions(uint32_t branches, uint32_t lut_size, doubl
     record_.domain = domain_.data();
     record_.lut = lut_.data();
     record_.point_offsets = offsets_.data();
+}
+
+void TransferFunctions::assign(uint32_t b, std::pair<double, double> domain, const float *rgba)
+{
+    domain_[2 * b] = domain.first;
+    domain_[2 * b + 1] = domain.second;
+    std::copy(rgba, rgba + std::size_t{record_.lut_size} * 4, lut_.begin() + std::size_t{b} * record_.lut_size * 4);
+}
+
+void TransferFunctions::assign_points(std::vector<uint32_t> offsets, std::vector<arbor_tf_point> points)
+{
+    offsets_ = std::move(offsets);
+    points_ = std::move(points);
+    record_.point_offsets = offsets_.data();
+    record_.points = points_.data();
 }
 
 void depict(PluginInstance &depictor, const arbor_depiction_request &request, DepictionRecord &out,

@@ -43,6 +43,11 @@ public:
     const std::vector<uint32_t> &point_offsets() const { return offsets_; }
     const std::vector<arbor_tf_point> &points() const { return points_; }
 
+    // Filling from a file: branch b's domain and lut_size RGBA entries, then
+    // the control points of every branch.
+    void assign(uint32_t b, std::pair<double, double> domain, const float *rgba);
+    void assign_points(std::vector<uint32_t> offsets, std::vector<arbor_tf_point> points);
+
 private:
     friend void generate_transfer_functions(PluginInstance &, const arbor_tf_request &, TransferFunctions &,
                                             ProgressSink *);

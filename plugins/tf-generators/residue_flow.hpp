@@ -15,7 +15,7 @@ namespace arbor::tf {
 struct FlowParameters {
     double flow_rate = 60.0;      // Q, in [0, conductivity]
     double conductivity = 300.0;  // K (water in sand)
-    double alpha_min = 0.02;      // opacity below every band
+    double alpha_min = 0.0;       // opacity below every band
     double alpha_range = 0.9;     // α_r: what all bands on a root-to-leaf path share
     double sibling_floor = 0.25;  // ε of the saddle-value factor among siblings
 };

@@ -40,7 +40,14 @@ std::vector<sdk::ParamSpec> residue_flow_params()
     p.push_back(sdk::ParamSpec::real("conductivity", "Hydraulic conductivity K", 300.0, 1e-6, 1e6)
                     .group("Opacity")
                     .hint("Darcy's K; 300 is water in sand. Head loss = Q p / (K n_children)"));
-    p.push_back(sdk::ParamSpec::real("alpha-min", "Minimum opacity", 0.02, 0.0, 1.0).group("Opacity"));
+    p.push_back(sdk::ParamSpec::real("alpha-min", "Minimum opacity", 0.0, 0.0, 1.0)
+                    .group("Opacity")
+                    .hint("Opacity below every band: what the outermost structure starts from (air stays clear at 0)"));
+    p.push_back(sdk::ParamSpec::real("opacity-unit", "Opacity unit distance", 8.0, 0.01, 1000.0)
+                    .unit("voxels")
+                    .group("Opacity")
+                    .hint("The thickness, in smallest voxel spacings, that the opacities refer to: larger sees "
+                          "deeper through outer structures"));
     p.push_back(sdk::ParamSpec::real("alpha-range", "Opacity range", 0.9, 0.0, 1.0)
                     .group("Opacity")
                     .hint("What all branches on a path from the root share above the minimum"));
@@ -96,6 +103,8 @@ public:
         colour.vividness_min = params().number("vividness-min");
         colour.vividness_max = params().number("vividness-max");
 
+        out.opacity_unit_distance = request.min_spacing > 0 ? request.min_spacing * params().number("opacity-unit")
+                                                            : params().number("opacity-unit");
         const std::vector<OpacityRange> ranges = residue_flow(tree, flow);
         const std::vector<BranchColour> colours = branch_colours(tree, colour, request.depiction, cache_);
         const std::vector<double> corners = shape_corners(shape);

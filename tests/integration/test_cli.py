@@ -565,3 +565,120 @@ class TransferFunctionsCli(unittest.TestCase):
                 self.assertNotEqual(code, 0)
                 self.assertIn(message, err)
                 self.assertFalse((SCRATCH / "bad-tf.json").exists())
+
+
+def png_pixels(path):
+    """(width, height, bytes per pixel, rows of bytes) of an 8-bit PNG, decoded with zlib."""
+    import struct
+    import zlib
+    data = pathlib.Path(path).read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    pos, idat, width = 8, b"", 0
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+            bpp = {2: 3, 6: 4, 0: 1}[colour]
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    raw, rows, prev = zlib.decompress(idat), [], bytearray(width * bpp)
+    stride = width * bpp + 1
+    for y in range(height):
+        f, line = raw[y * stride], bytearray(raw[y * stride + 1:(y + 1) * stride])
+        for i in range(len(line)):
+            a = line[i - bpp] if i >= bpp else 0
+            b, c = prev[i], prev[i - bpp] if i >= bpp else 0
+            if f == 1:
+                line[i] = (line[i] + a) & 255
+            elif f == 2:
+                line[i] = (line[i] + b) & 255
+            elif f == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(line))
+        prev = line
+    return width, height, bpp, rows
+
+
+class Run(unittest.TestCase):
+    def check_report(self, report, image):
+        r = json.loads(report.read_text())
+        self.assertEqual(r["format"], "arbor-run-report/1")
+        for key in ("input", "plugins", "simplification", "camera", "seconds", "branches", "output"):
+            self.assertIn(key, r)
+        for stage in ("import", "contour tree", "simplification", "transfer functions", "render", "total"):
+            self.assertGreaterEqual(r["seconds"][stage], 0)
+        for role in ("simplifier", "generator", "renderer", "depictor"):
+            self.assertRegex(r["plugins"][role]["version"], r"^\d+\.\d+\.\d+$")
+        s = r["simplification"]
+        self.assertGreater(s["branches_before"], s["branches_after"] - 1)
+        self.assertEqual(len(r["branches"]), s["branches_after"])
+        for b in r["branches"]:
+            self.assertRegex(b["colour"], r"^#[0-9a-f]{6}$")
+            self.assertLessEqual(b["opacity_range"][0], b["opacity_range"][1])
+        self.assertGreater(r["output"]["covered_fraction"], 0.02)
+        self.assertEqual(r["output"]["image"], str(image))
+        self.assertTrue(report.with_suffix(".md").exists())
+        return r
+
+    def test_main_job_on_the_phantom(self):
+        out = SCRATCH / "head" / "head.png"
+        code, stdout, _ = arbor("run", "--phantom", "head", "-o", out)
+        self.assertIn("image:  " + str(out), stdout)
+        width, height, bpp, rows = png_pixels(out)
+        self.assertEqual((width, height, bpp), (512, 512, 4))
+        self.assertGreater(len({r[i:i + 3] for r in rows[::16] for i in range(0, len(r), 64)}), 20, "blank image")
+        r = self.check_report(SCRATCH / "head" / "head.report.json", out)
+        self.assertTrue(r["simplification"]["automatic"])
+        self.assertEqual(png_size(SCRATCH / "head" / "head-legend.png"), (512, 512))
+
+    def test_exr_output_with_depth(self):
+        out = SCRATCH / "head.exr"
+        arbor("run", "--phantom", "head", "--phantom-size", 48, "--keep", 6, "--width", 96, "--height", 64,
+              "--azimuth", 40, "--elevation", 20, "--orthographic", "-o", out)
+        data = out.read_bytes()
+        self.assertEqual(data[:4], b"\x76\x2f\x31\x01")  # OpenEXR magic
+        for channel in (b"R\0", b"G\0", b"B\0", b"A\0", b"Z\0"):
+            self.assertIn(channel, data[:400])
+        r = json.loads((SCRATCH / "head.report.json").read_text())
+        self.assertEqual((r["camera"]["width"], r["camera"]["height"]), (96, 64))
+        self.assertFalse(r["camera"]["perspective"])
+
+    def test_main_job_on_every_shared_volume(self):
+        for name, (path, *_rest) in VOLUMES.items():
+            with self.subTest(volume=name):
+                out = SCRATCH / "shared" / (name + ".png")
+                arbor("run", DATA / path, "-o", out, "--width", 256, "--height", 256)
+                self.assertEqual(png_size(out), (256, 256))
+                self.check_report(SCRATCH / "shared" / (name + ".report.json"), out)
+
+    def test_render_with_a_transfer_function_file(self):
+        tf, out = SCRATCH / "render-tf.json", SCRATCH / "render.png"
+        arbor("tf", "--phantom", "head", "--phantom-size", 64, "--keep", 8, "--shape", "box", "-o", tf)
+        code, stdout, _ = arbor("render", "--phantom", "head", "--phantom-size", 64, "--tf", tf, "-o", out,
+                                "--width", 128, "--height", 128)
+        self.assertEqual(png_size(out), (128, 128))
+        # Functions made for another volume are refused, not misapplied.
+        code, _, err = arbor("render", "--phantom", "head", "--phantom-size", 64, "--phantom-noise", 5, "--tf", tf,
+                             "-o", SCRATCH / "other.png", check=False)
+        self.assertNotEqual(code, 0)
+        self.assertIn("regenerate them with `arbor tf`", err)
+
+    def test_bad_inputs_are_refused_clearly(self):
+        cases = [
+            (("--phantom", "head", "-o", SCRATCH / "x.jpg"), "written as .png or .exr"),
+            (("--phantom", "head", "--renderer", "opengl", "-o", SCRATCH / "x.png"), "no renderer 'opengl'"),
+            ((DATA / "dicom_malformed", "-o", SCRATCH / "x.png"), ""),
+            ((SCRATCH / "missing.nrrd", "-o", SCRATCH / "x.png"), "missing.nrrd"),
+        ]
+        for args, message in cases:
+            with self.subTest(args=args):
+                code, _, err = arbor("run", *args, "--phantom-size", 32, check=False)
+                self.assertNotEqual(code, 0)
+                self.assertIn(message, err)
+                self.assertTrue(err.startswith("arbor: error:"), err)

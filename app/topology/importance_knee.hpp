@@ -1,0 +1,24 @@
+// importance_knee.hpp - an automatic branch count: where the curve of
+// importance against rank bends from the few strong structures into the long
+// flat tail of noise.  Kneedle (Satopaa et al. 2011) on log importance
+// against log rank: the rank farthest below the chord from the first to the
+// last point.
+#pragma once
+
+#include "branch_decomposition.hpp"
+
+#include <cstddef>
+
+namespace arbor::topology {
+
+struct KneeChoice {
+    std::size_t keep = 1;         // branches to keep, root included
+    std::size_t considered = 0;   // ranks the knee was looked for in
+};
+
+// Looks at the `max_ranks` most important non-root branches; the result is
+// clamped to [min_keep, max_keep].
+KneeChoice knee_branch_count(const BranchDecomposition &d, std::size_t min_keep = 6, std::size_t max_keep = 48,
+                             std::size_t max_ranks = 1000);
+
+} // namespace arbor::topology

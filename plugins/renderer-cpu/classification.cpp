@@ -1,0 +1,79 @@
+#include "classification.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace arbor::raycast {
+
+void ClassTable::build(const arbor_tf_set &tf, double step_mm)
+{
+    size_ = tf.lut_size;
+    range_.resize(tf.branch_count);
+    rgba_.resize(static_cast<std::size_t>(tf.branch_count) * size_ * 4);
+    const double exponent = step_mm / tf.opacity_unit_distance;
+    for (uint32_t b = 0; b < tf.branch_count; ++b) {
+        const double lo = tf.domain[2 * b], hi = tf.domain[2 * b + 1];
+        range_[b] = {static_cast<float>(lo), hi > lo ? static_cast<float>((size_ - 1) / (hi - lo)) : 0.0f,
+                     static_cast<float>(size_ - 1)};
+        for (uint32_t i = 0; i < size_; ++i) {
+            const float *in = tf.lut + (static_cast<std::size_t>(b) * size_ + i) * 4;
+            float *out = &rgba_[(static_cast<std::size_t>(b) * size_ + i) * 4];
+            const double a = 1.0 - std::pow(1.0 - std::clamp(static_cast<double>(in[3]), 0.0, 1.0), exponent);
+            for (int c = 0; c < 3; ++c)
+                out[c] = static_cast<float>(std::clamp(static_cast<double>(in[c]), 0.0, 1.0) * a);
+            out[3] = static_cast<float>(a);
+        }
+    }
+}
+
+float ClassTable::max_alpha(uint32_t label, float lo, float hi) const
+{
+    const Range &r = range_[label];
+    const auto at = [&](float v) {
+        const float x = (v - r.low) * r.scale;
+        return static_cast<uint32_t>(std::clamp(x, 0.0f, r.last) + 0.5f);
+    };
+    const uint32_t a = at(lo), b = at(hi);
+    float m = 0.0f;
+    for (uint32_t i = std::min(a, b); i <= std::max(a, b); ++i)
+        m = std::max(m, rgba_[(static_cast<std::size_t>(label) * size_ + i) * 4 + 3]);
+    return m;
+}
+
+void Occupancy::build(const VoxelGrid &g, const ClassTable &table)
+{
+    bx_ = (g.nx + kBlock - 1) / kBlock;
+    by_ = (g.ny + kBlock - 1) / kBlock;
+    bz_ = (g.nz + kBlock - 1) / kBlock;
+    empty_.assign(static_cast<std::size_t>(bx_ * by_ * bz_), 0);
+    constexpr float kTransparent = 1.0f / 1024.0f;
+    std::vector<uint32_t> labels;
+    for (int64_t bk = 0; bk < bz_; ++bk)
+        for (int64_t bj = 0; bj < by_; ++bj)
+            for (int64_t bi = 0; bi < bx_; ++bi) {
+                // The block's voxels plus a one-voxel apron: everything a
+                // trilinear sample inside the block reads.
+                float lo = INFINITY, hi = -INFINITY;
+                labels.clear();
+                bool many = false;
+                for (int64_t k = std::max<int64_t>(bk * kBlock - 1, 0); k <= std::min((bk + 1) * kBlock, g.nz - 1); ++k)
+                    for (int64_t j = std::max<int64_t>(bj * kBlock - 1, 0); j <= std::min((bj + 1) * kBlock, g.ny - 1); ++j)
+                        for (int64_t i = std::max<int64_t>(bi * kBlock - 1, 0); i <= std::min((bi + 1) * kBlock, g.nx - 1);
+                             ++i) {
+                            const std::size_t v = g.index(i, j, k);
+                            lo = std::min(lo, g.value[v]);
+                            hi = std::max(hi, g.value[v]);
+                            const uint32_t l = g.label.empty() ? 0u : g.label[v];
+                            if (!many && std::find(labels.begin(), labels.end(), l) == labels.end()) {
+                                labels.push_back(l);
+                                many = labels.size() > 16;
+                            }
+                        }
+                bool empty = !many;
+                for (std::size_t n = 0; empty && n < labels.size(); ++n)
+                    empty = table.max_alpha(labels[n], lo, hi) < kTransparent;
+                empty_[static_cast<std::size_t>(bi + bx_ * (bj + by_ * bk))] = empty ? 1 : 0;
+            }
+}
+
+} // namespace arbor::raycast

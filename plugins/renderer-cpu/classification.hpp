@@ -1,0 +1,52 @@
+// classification.hpp - post-classification tables and empty-space skipping.
+// Each label's lookup table is corrected for the sample distance (opacity
+// per unit distance -> per step) and premultiplied once per render; the
+// occupancy grid marks 8^3 blocks whose samples can only be transparent, so
+// rays jump over them.
+#pragma once
+
+#include "voxel_grid.hpp"
+
+#include <arbor/transfer_function.h>
+
+namespace arbor::raycast {
+
+class ClassTable {
+public:
+    // step_mm: the distance between samples along a ray.
+    void build(const arbor_tf_set &tf, double step_mm);
+
+    // Premultiplied RGBA of a sample of `value` in `label`.
+    const float *lookup(uint32_t label, float value) const
+    {
+        const Range &r = range_[label];
+        float x = (value - r.low) * r.scale;
+        x = x < 0.0f ? 0.0f : (x > r.last ? r.last : x);
+        return &rgba_[(static_cast<std::size_t>(label) * size_ + static_cast<uint32_t>(x + 0.5f)) * 4];
+    }
+    // Largest opacity of `label` over values in [lo, hi].
+    float max_alpha(uint32_t label, float lo, float hi) const;
+    uint32_t labels() const { return static_cast<uint32_t>(range_.size()); }
+
+private:
+    struct Range {
+        float low, scale, last;
+    };
+    uint32_t size_ = 0;
+    std::vector<Range> range_;
+    std::vector<float> rgba_;
+};
+
+class Occupancy {
+public:
+    static constexpr int64_t kBlock = 8;
+    void build(const VoxelGrid &g, const ClassTable &table);
+    // True when every sample within block (bi, bj, bk) is transparent.
+    bool empty(int64_t bi, int64_t bj, int64_t bk) const { return empty_[static_cast<std::size_t>(bi + bx_ * (bj + by_ * bk))]; }
+
+private:
+    int64_t bx_ = 0, by_ = 0, bz_ = 0;
+    std::vector<uint8_t> empty_;
+};
+
+} // namespace arbor::raycast

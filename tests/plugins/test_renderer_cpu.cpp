@@ -1,0 +1,222 @@
+// The CPU ray caster through the ABI: the analytic slab (alpha = 1 -
+// exp(-kappa L)), label-aware classification of equal values, the camera's
+// orientation, depth of the first half-opaque hit, and refusal of labels
+// without transfer functions.
+#include "plugin_fixture.hpp"
+
+#include "host/rendering.hpp"
+#include "host/tf_generation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace arbor {
+namespace {
+
+constexpr int64_t kN = 64;
+constexpr uint32_t kLut = 256;
+
+Volume cube(const std::function<float(int64_t, int64_t, int64_t)> &value)
+{
+    Geometry g;
+    g.dims = {kN, kN, kN};
+    g.spacing = {1, 1, 1};
+    g.origin = {0, 0, 0};
+    Volume v = Volume::allocate(ARBOR_VOXEL_F32, g, {}, uint64_t{1} << 30);
+    for (int64_t k = 0; k < kN; ++k)
+        for (int64_t j = 0; j < kN; ++j)
+            for (int64_t i = 0; i < kN; ++i)
+                v.as<float>()[i + kN * (j + kN * k)] = value(i, j, k);
+    return v;
+}
+
+// Over [0, 100]: transparent below 50, colour `rgb` with opacity `alpha` per mm above.
+void step_function(TransferFunctions &tf, uint32_t b, std::array<float, 3> rgb, float alpha)
+{
+    std::vector<float> lut(kLut * 4);
+    for (uint32_t i = 0; i < kLut; ++i) {
+        const double value = 100.0 * i / (kLut - 1);
+        for (int c = 0; c < 3; ++c)
+            lut[4 * i + c] = rgb[c];
+        lut[4 * i + 3] = value >= 50.0 ? alpha : 0.0f;
+    }
+    tf.assign(b, {0.0, 100.0}, lut.data());
+}
+
+struct Scene {
+    PluginInstance renderer = test::built_plugins().create("org.arbor.renderer.cpu-raycast");
+    arbor_camera camera{};
+    float background[4] = {0, 0, 0, 0};
+
+    Scene()
+    {
+        set("shading", "false");
+        set("jitter", "false");
+        camera.struct_size = sizeof camera;
+        camera.projection = ARBOR_PROJECTION_ORTHOGRAPHIC;
+        camera.parallel_scale = kN / 2.0;
+    }
+    void set(const std::string &param, const std::string &text)
+    {
+        renderer.set_param(param, parse_param_value(*renderer.find_param(param), text).value);
+    }
+    // Looking along +z (from k = 0 towards k = n - 1), +y up.
+    void look_along_z()
+    {
+        const double c = (kN - 1) / 2.0;
+        camera.position[0] = c, camera.position[1] = c, camera.position[2] = -200;
+        camera.focal_point[0] = c, camera.focal_point[1] = c, camera.focal_point[2] = c;
+        camera.view_up[0] = 0, camera.view_up[1] = 1, camera.view_up[2] = 0;
+    }
+    RenderedImage render(const Volume &v, const TransferFunctions &tf, const std::vector<uint32_t> *labels = nullptr)
+    {
+        const arbor_volume view = v.view();
+        arbor_label_map map{};
+        map.struct_size = sizeof map;
+        map.label_count = tf.branch_count();
+        map.dims[0] = map.dims[1] = map.dims[2] = kN;
+        if (labels)
+            map.labels = labels->data();
+        arbor_render_request r{};
+        r.struct_size = sizeof r;
+        r.volume = &view;
+        r.labels = labels ? &map : nullptr;
+        r.transfer_functions = &tf.record();
+        r.camera = &camera;
+        std::copy(background, background + 4, r.background);
+        r.volume_revision = ++revision;
+        r.labels_revision = revision;
+        return render_image(renderer, r, 64, 64);
+    }
+    uint64_t revision = 0;
+};
+
+const float *pixel(const RenderedImage &im, uint32_t x, uint32_t y)
+{
+    return &im.rgba[(std::size_t{y} * im.width + x) * 4];
+}
+
+TEST(CpuRayCaster, HomogeneousSlabGivesTheExponentialAlpha)
+{
+    // Value 100 for k in [20, 43]: with trilinear samples the 50-crossings
+    // are at k = 19.5 and 43.5, a slab L = 24 mm thick.
+    const Volume v = cube([](int64_t, int64_t, int64_t k) { return k >= 20 && k <= 43 ? 100.0f : 0.0f; });
+    for (float alpha : {0.02f, 0.05f, 0.1f}) {
+        for (double unit : {1.0, 4.0})
+            for (const char *step : {"0.5", "0.25"}) {
+                TransferFunctions tf(1, kLut, unit);
+                step_function(tf, 0, {1, 1, 1}, alpha);
+                Scene s;
+                s.set("sample-distance", step);
+                s.set("termination", "1");
+                s.look_along_z();
+                const RenderedImage im = s.render(v, tf);
+                const double kappa = -std::log(1.0 - alpha) / unit;
+                const double expected = 1.0 - std::exp(-kappa * 24.0);
+                EXPECT_NEAR(pixel(im, 32, 32)[3], expected, 0.015)
+                    << "alpha " << alpha << " per " << unit << " mm, step " << step;
+            }
+    }
+}
+
+TEST(CpuRayCaster, EqualValuesInDifferentBranchesGetTheirOwnColours)
+{
+    // Two blobs of the same value, left (small i) and right (large i).
+    const auto in_blob = [](int64_t i, int64_t j, int64_t k, int64_t ci) {
+        return (i - ci) * (i - ci) + (j - 32) * (j - 32) + (k - 32) * (k - 32) < 81;
+    };
+    const Volume v = cube([&](int64_t i, int64_t j, int64_t k) {
+        return in_blob(i, j, k, 16) || in_blob(i, j, k, 48) ? 80.0f : 0.0f;
+    });
+    std::vector<uint32_t> labels(kN * kN * kN, 0);
+    for (int64_t k = 0; k < kN; ++k)
+        for (int64_t j = 0; j < kN; ++j)
+            for (int64_t i = 0; i < kN; ++i)
+                labels[i + kN * (j + kN * k)] = i < 32 ? 1 : 2;
+    TransferFunctions tf(3, kLut, 1.0);
+    step_function(tf, 0, {1, 1, 1}, 0.0f);
+    step_function(tf, 1, {1, 0, 0}, 0.5f);
+    step_function(tf, 2, {0, 0, 1}, 0.5f);
+    Scene s;
+    s.look_along_z();
+    const RenderedImage im = s.render(v, tf, &labels);
+    // Looking along +z with +y up, +x points to the image's left.
+    const float *left = pixel(im, 48, 31), *right = pixel(im, 16, 31);
+    EXPECT_GT(left[3], 0.9f);
+    EXPECT_GT(right[3], 0.9f);
+    EXPECT_GT(left[0], 0.8f);
+    EXPECT_LT(left[2], 0.1f);
+    EXPECT_GT(right[2], 0.8f);
+    EXPECT_LT(right[0], 0.1f);
+    // Without labels both blobs take function 0.
+    TransferFunctions one(1, kLut, 1.0);
+    step_function(one, 0, {0, 1, 0}, 0.5f);
+    const RenderedImage plain = s.render(v, one);
+    EXPECT_GT(pixel(plain, 16, 31)[1], 0.8f);
+    EXPECT_GT(pixel(plain, 48, 31)[1], 0.8f);
+}
+
+TEST(CpuRayCaster, OrbitCameraShowsThePatientsLeftOnTheRightFromTheFront)
+{
+    // A blob at +x (the patient's left in LPS) and a blob at +z (superior).
+    Geometry g;
+    g.dims = {kN, kN, kN};
+    g.spacing = {1, 1, 1};
+    const Volume v = cube([](int64_t i, int64_t j, int64_t k) {
+        const bool left = (i - 50) * (i - 50) + (j - 32) * (j - 32) + (k - 32) * (k - 32) < 36;
+        const bool top = (i - 32) * (i - 32) + (j - 32) * (j - 32) + (k - 52) * (k - 52) < 36;
+        return left || top ? 100.0f : 0.0f;
+    });
+    TransferFunctions tf(1, kLut, 1.0);
+    step_function(tf, 0, {1, 1, 1}, 0.8f);
+    Scene s;
+    Orbit front;
+    s.camera = orbit_camera(v.geometry(), front);
+    const RenderedImage im = s.render(v, tf);
+    double sx = 0, sy = 0, w = 0, tx = 0, ty = 0, tw = 0;
+    for (uint32_t y = 0; y < 64; ++y)
+        for (uint32_t x = 0; x < 64; ++x) {
+            const float a = pixel(im, x, y)[3];
+            if (a < 0.5f)
+                continue;
+            if (x > 32) { // the left blob
+                sx += x, sy += y, w += 1;
+            } else {
+                tx += x, ty += y, tw += 1;
+            }
+        }
+    ASSERT_GT(w, 0);
+    ASSERT_GT(tw, 0);
+    EXPECT_NEAR(sy / w, 31.5, 3.0);  // level with the centre
+    EXPECT_LT(ty / tw, 20.0);        // superior is up
+    EXPECT_NEAR(tx / tw, 31.5, 3.0); // centred
+    // Depth of the first half-opaque hit: the camera-facing surface of the blob.
+    const arbor_camera &c = s.camera;
+    const double to_centre = std::hypot(c.position[0] - 31.5, c.position[1] - 31.5, c.position[2] - 31.5);
+    const float d = im.depth[32 * 64 + static_cast<uint32_t>(sx / w)];
+    EXPECT_TRUE(std::isfinite(d));
+    EXPECT_LT(d, to_centre + 1);
+    EXPECT_GT(d, to_centre - 40);
+}
+
+TEST(CpuRayCaster, LabelsWithoutTransferFunctionsAreRefused)
+{
+    const Volume v = cube([](int64_t, int64_t, int64_t) { return 1.0f; });
+    std::vector<uint32_t> labels(kN * kN * kN, 0);
+    labels[100] = 5;
+    TransferFunctions tf(2, kLut, 1.0);
+    step_function(tf, 0, {1, 1, 1}, 0.5f);
+    step_function(tf, 1, {1, 1, 1}, 0.5f);
+    Scene s;
+    s.look_along_z();
+    try {
+        s.render(v, tf, &labels);
+        FAIL() << "label 5 accepted with 2 transfer functions";
+    } catch (const PluginError &e) {
+        EXPECT_NE(std::string(e.what()).find("label 5"), std::string::npos) << e.what();
+    }
+}
+
+} // namespace
+} // namespace arbor
