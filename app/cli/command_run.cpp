@@ -13,10 +13,10 @@
 #include "transfer_function_stage.hpp"
 #include "volume_input.hpp"
 
+#include "core/stopwatch.hpp"
 #include "host/filter_run.hpp"
 #include "topology/importance_knee.hpp"
 
-#include <chrono>
 #include <cstdio>
 #include <memory>
 
@@ -33,20 +33,6 @@ struct RunArgs {
     std::string filter, simplifier = "itri";
     CutRequest cut;
     std::string output, legend, report;
-};
-
-class StageClock {
-public:
-    double lap()
-    {
-        const auto now = std::chrono::steady_clock::now();
-        const double s = std::chrono::duration<double>(now - last_).count();
-        last_ = now;
-        return s;
-    }
-
-private:
-    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
 std::filesystem::path beside(const std::filesystem::path &image, const std::string &suffix)
@@ -86,7 +72,7 @@ void add_run_command(CLI::App &app, Context &context)
         PluginInstance *filter = a->filter.empty() ? nullptr : &a->filters.resolve(a->filter);
 
         RunReport report;
-        StageClock clock;
+        Stopwatch clock;
         LoadedVolume in = a->input.load();
         report.stage("import", clock.lap());
         if (filter) {

@@ -1,5 +1,7 @@
 #include "topology_pipeline.hpp"
 
+#include "core/stopwatch.hpp"
+
 #include "grid_neighbors.hpp"
 #include "merge_tree.hpp"
 #include "vertex_order.hpp"
@@ -16,20 +18,6 @@
 namespace arbor::topology {
 
 namespace {
-
-class Stopwatch {
-public:
-    double lap()
-    {
-        const auto now = std::chrono::steady_clock::now();
-        const double s = std::chrono::duration<double>(now - last_).count();
-        last_ = now;
-        return s;
-    }
-
-private:
-    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
 
 void refuse_non_finite(const Volume &volume)
 {
