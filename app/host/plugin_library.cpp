@@ -13,7 +13,10 @@ std::unique_ptr<PluginLibrary> PluginLibrary::load(const std::filesystem::path &
     std::unique_ptr<PluginLibrary> lib(new PluginLibrary());
     lib->path_ = path;
     dlerror();
-    lib->handle_ = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    // RTLD_NODELETE: a plugin's code stays mapped after dlclose.  Libraries
+    // it pulls in (VTK's object factories, for one) may keep pointers into it
+    // that their own exit handlers follow.
+    lib->handle_ = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
     if (!lib->handle_) {
         const char *e = dlerror();
         throw PluginRefused(std::string("cannot be loaded: ") + (e ? e : "unknown dlopen error"));

@@ -39,7 +39,7 @@ private:
 
 class Occupancy {
 public:
-    static constexpr int64_t kBlock = 8;
+    static constexpr int64_t kBlock = 8; // the ray caster divides by it with >> 3
     void build(const VoxelGrid &g, const ClassTable &table);
     // True when every sample within block (bi, bj, bk) is transparent.
     bool empty(int64_t bi, int64_t bj, int64_t bk) const { return empty_[static_cast<std::size_t>(bi + bx_ * (bj + by_ * bk))]; }

@@ -11,6 +11,7 @@
 #include <arbor/sdk/renderer.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -89,7 +90,15 @@ private:
 
 struct Shading {
     bool enabled = true;
-    float ambient = 0.3f, diffuse = 0.7f, specular = 0.25f, shininess = 24.0f;
+    float ambient = 0.3f, diffuse = 0.7f;
+    // specular * ndl^shininess for ndl = i / 256: no pow() per sample.
+    std::array<float, 258> highlight{};
+
+    void tabulate(float specular, float shininess)
+    {
+        for (std::size_t i = 0; i < highlight.size(); ++i)
+            highlight[i] = specular * std::pow(std::min(1.0f, i / 256.0f), shininess);
+    }
 };
 
 // FNV-1a over the bytes of the transfer functions: the occupancy grid is
@@ -153,8 +162,7 @@ public:
         shading.enabled = params().flag("shading");
         shading.ambient = static_cast<float>(params().number("ambient"));
         shading.diffuse = static_cast<float>(params().number("diffuse"));
-        shading.specular = static_cast<float>(params().number("specular"));
-        shading.shininess = static_cast<float>(params().number("shininess"));
+        shading.tabulate(static_cast<float>(params().number("specular")), static_cast<float>(params().number("shininess")));
         const float termination = static_cast<float>(params().number("termination"));
         const bool jitter = params().flag("jitter");
         const Camera camera(*request.camera, out.width, out.height);
@@ -227,12 +235,15 @@ private:
         // box is clipped, shifted by a fixed per-pixel fraction of a step.
         const double offset = jitter ? pixel_hash(x, y) * step : 0.0;
         double t = std::ceil((t0 - offset) / step) * step + offset;
+        const int64_t last_i = std::max<int64_t>(g.nx - 2, 0), last_j = std::max<int64_t>(g.ny - 2, 0),
+                      last_k = std::max<int64_t>(g.nz - 2, 0);
+        const bool labelled = !g.label.empty();
         while (t <= t1 && acc[3] < termination) {
             const double px = o[0] + t * d[0], py = o[1] + t * d[1], pz = o[2] + t * d[2];
-            const int64_t i = std::min<int64_t>(static_cast<int64_t>(px), g.nx - 2 < 0 ? 0 : g.nx - 2);
-            const int64_t j = std::min<int64_t>(static_cast<int64_t>(py), g.ny - 2 < 0 ? 0 : g.ny - 2);
-            const int64_t k = std::min<int64_t>(static_cast<int64_t>(pz), g.nz - 2 < 0 ? 0 : g.nz - 2);
-            if (occupancy_.empty(i / Occupancy::kBlock, j / Occupancy::kBlock, k / Occupancy::kBlock)) {
+            const int64_t i = std::min(static_cast<int64_t>(px), last_i);
+            const int64_t j = std::min(static_cast<int64_t>(py), last_j);
+            const int64_t k = std::min(static_cast<int64_t>(pz), last_k);
+            if (occupancy_.empty(i >> 3, j >> 3, k >> 3)) { // kBlock = 8
                 t = skip_block(o, d, t, step, i, j, k);
                 continue;
             }
@@ -241,7 +252,7 @@ private:
             const int64_t ni = i + (fx >= 0.5f && g.nx > 1), nj = j + (fy >= 0.5f && g.ny > 1),
                           nk = k + (fz >= 0.5f && g.nz > 1);
             const std::size_t nearest = g.index(ni, nj, nk);
-            const float *c = table_.lookup(g.label.empty() ? 0u : g.label[nearest], value);
+            const float *c = table_.lookup(labelled ? g.label[nearest] : 0u, value);
             if (c[3] > 0.0f) {
                 float r = c[0], gr = c[1], b = c[2];
                 if (shading.enabled) {
@@ -250,7 +261,7 @@ private:
                         const float nx = nv[0] / 127.0f, ny = nv[1] / 127.0f, nz = nv[2] / 127.0f;
                         const float ndl = std::fabs(nx * light[0] + ny * light[1] + nz * light[2]);
                         // Headlight: the half vector is the light direction.
-                        const float spec = shading.specular * std::pow(ndl, shading.shininess) * c[3];
+                        const float spec = shading.highlight[static_cast<std::size_t>(ndl * 256.0f)] * c[3];
                         const float lit = shading.ambient + shading.diffuse * ndl;
                         r = r * lit + spec;
                         gr = gr * lit + spec;

@@ -1,0 +1,102 @@
+// bench_render.cpp - frames per second of Arbor's CPU ray caster against
+// VTK 9.1's vtkFixedPointVolumeRayCastMapper (the VTK reference renderer
+// plugin) on the shared volumes: 512x512, the same camera, sample distance
+// (0.5 voxel), global transfer function and shading on or off, measured in
+// the same run.  Needs X for VTK: run under xvfb-run.  Prints a table; not a
+// pass/fail test.
+#include "plugin_fixture.hpp"
+
+#include "core/volume_statistics.hpp"
+#include "host/rendering.hpp"
+#include "host/tf_generation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+using namespace arbor;
+
+namespace {
+
+// A generic global transfer function: clear below 15% of the range, then a
+// ramp to 0.6 opacity per 4 voxels, heat colours.
+void global_ramp(TransferFunctions &tf, double lo, double hi)
+{
+    std::vector<float> lut(256 * 4);
+    for (uint32_t i = 0; i < 256; ++i) {
+        const double u = i / 255.0;
+        lut[4 * i + 0] = static_cast<float>(std::min(1.0, 2.5 * u));
+        lut[4 * i + 1] = static_cast<float>(std::clamp(2.5 * u - 0.8, 0.0, 1.0));
+        lut[4 * i + 2] = static_cast<float>(std::clamp(3.0 * u - 2.0, 0.0, 1.0));
+        lut[4 * i + 3] = static_cast<float>(u < 0.15 ? 0.0 : 0.6 * (u - 0.15) / 0.85);
+    }
+    tf.assign(0, {lo, hi}, lut.data());
+}
+
+double frames_per_second(PluginInstance &renderer, const arbor_render_request &r, int frames)
+{
+    render_image(renderer, r, 512, 512); // caches built outside the clock
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int f = 0; f < frames; ++f)
+        render_image(renderer, r, 512, 512);
+    return frames / std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+} // namespace
+
+int main()
+{
+    const char *display = std::getenv("DISPLAY");
+    if (!display || !*display) {
+        std::fprintf(stderr, "arbor_bench_render: VTK needs an X display; run under xvfb-run -a\n");
+        return 2;
+    }
+    const char *volumes[] = {"neghip/neghip.nhdr",        "tooth/tooth.nhdr",
+                             "walnut/walnut.nhdr",        "mr_brain_tumor_pyradiomics/brain1_image.nrrd",
+                             "ct_chest_lidc2/LIDC2.mha",  "engine/engine.vti",
+                             "bonsai/bonsai.vti",         "aneurism/aneurism.vti"};
+    std::printf("arbor_bench_render: 512x512, sample distance 0.5 voxel, global ramp TF, 4 frames after a warm-up\n");
+    std::printf("fps = frames per second; ratio = Arbor / VTK (> 1: Arbor faster)\n\n");
+    std::printf("%-46s %14s | %9s %9s %7s | %9s %9s %7s\n", "volume", "dims", "arbor", "vtk", "ratio",
+                "arbor sh", "vtk sh", "ratio");
+    for (const char *path : volumes) try {
+        const Volume v = test::import(test::shared_data(path));
+        const VolumeStatistics stats = compute_statistics(v);
+        const arbor_volume view = v.view();
+        TransferFunctions tf(1, 256, 4.0 * std::min({v.geometry().spacing[0], v.geometry().spacing[1],
+                                                    v.geometry().spacing[2]}));
+        global_ramp(tf, stats.min, stats.max);
+        Orbit orbit;
+        orbit.azimuth = 30;
+        orbit.elevation = 20;
+        const arbor_camera camera = orbit_camera(v.geometry(), orbit);
+        arbor_render_request r{};
+        r.struct_size = sizeof r;
+        r.volume = &view;
+        r.transfer_functions = &tf.record();
+        r.camera = &camera;
+        r.background[3] = 1.0f;
+        r.volume_revision = 1;
+        double fps[2][2];
+        for (int shading = 0; shading < 2; ++shading) {
+            PluginInstance cpu = test::built_plugins().create("org.arbor.renderer.cpu-raycast");
+            PluginInstance vtk = test::built_plugins().create("org.arbor.renderer.vtk-reference");
+            for (PluginInstance *p : {&cpu, &vtk})
+                p->set_param("shading",
+                             parse_param_value(*p->find_param("shading"), shading ? "true" : "false").value);
+            fps[shading][0] = frames_per_second(cpu, r, 4);
+            fps[shading][1] = frames_per_second(vtk, r, 4);
+        }
+        const auto &g = v.geometry();
+        char dims[32];
+        std::snprintf(dims, sizeof dims, "%lldx%lldx%lld", static_cast<long long>(g.dims[0]),
+                      static_cast<long long>(g.dims[1]), static_cast<long long>(g.dims[2]));
+        std::printf("%-46s %14s | %9.2f %9.2f %6.2fx | %9.2f %9.2f %6.2fx\n", path, dims, fps[0][0], fps[0][1],
+                    fps[0][0] / fps[0][1], fps[1][0], fps[1][1], fps[1][0] / fps[1][1]);
+        std::fflush(stdout);
+    } catch (const std::exception &e) {
+        std::printf("%-46s skipped: %s\n", path, e.what());
+    }
+    return 0;
+}
