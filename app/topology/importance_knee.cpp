@@ -21,11 +21,11 @@ KneeChoice knee_branch_count(const BranchDecomposition &d, std::size_t min_keep,
     choice.considered = n;
     std::size_t knee = n; // keep every ranked branch when there is no bend
     if (n >= 3) {
-        const double x0 = 0.0, x1 = std::log(static_cast<double>(n));
+        const double x0 = 0.0, x1 = static_cast<double>(n - 1);
         const double y0 = std::log(importance[0]), y1 = std::log(importance[n - 1]);
         double best = 0.0;
         for (std::size_t r = 1; r + 1 < n; ++r) {
-            const double x = std::log(static_cast<double>(r + 1)), y = std::log(importance[r]);
+            const double x = static_cast<double>(r), y = std::log(importance[r]);
             // How far the curve lies below the chord (both axes normalised).
             const double chord = y0 + (y1 - y0) * (x - x0) / (x1 - x0);
             const double below = (chord - y) / (y0 - y1 > 0 ? y0 - y1 : 1.0);

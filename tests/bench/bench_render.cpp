@@ -4,6 +4,7 @@
 // (0.5 voxel), global transfer function and shading on or off, measured in
 // the same run.  Needs X for VTK: run under xvfb-run.  Prints a table; not a
 // pass/fail test.
+#include "global_ramp.hpp"
 #include "plugin_fixture.hpp"
 
 #include "core/volume_statistics.hpp"
@@ -18,21 +19,6 @@
 using namespace arbor;
 
 namespace {
-
-// A generic global transfer function: clear below 15% of the range, then a
-// ramp to 0.6 opacity per 4 voxels, heat colours.
-void global_ramp(TransferFunctions &tf, double lo, double hi)
-{
-    std::vector<float> lut(256 * 4);
-    for (uint32_t i = 0; i < 256; ++i) {
-        const double u = i / 255.0;
-        lut[4 * i + 0] = static_cast<float>(std::min(1.0, 2.5 * u));
-        lut[4 * i + 1] = static_cast<float>(std::clamp(2.5 * u - 0.8, 0.0, 1.0));
-        lut[4 * i + 2] = static_cast<float>(std::clamp(3.0 * u - 2.0, 0.0, 1.0));
-        lut[4 * i + 3] = static_cast<float>(u < 0.15 ? 0.0 : 0.6 * (u - 0.15) / 0.85);
-    }
-    tf.assign(0, {lo, hi}, lut.data());
-}
 
 double frames_per_second(PluginInstance &renderer, const arbor_render_request &r, int frames)
 {
@@ -66,7 +52,7 @@ int main()
         const arbor_volume view = v.view();
         TransferFunctions tf(1, 256, 4.0 * std::min({v.geometry().spacing[0], v.geometry().spacing[1],
                                                     v.geometry().spacing[2]}));
-        global_ramp(tf, stats.min, stats.max);
+        test::global_ramp(tf, stats.min, stats.max);
         Orbit orbit;
         orbit.azimuth = 30;
         orbit.elevation = 20;

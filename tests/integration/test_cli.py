@@ -637,6 +637,15 @@ class Run(unittest.TestCase):
         self.assertTrue(r["simplification"]["automatic"])
         self.assertEqual(png_size(SCRATCH / "head" / "head-legend.png"), (512, 512))
 
+    def test_automatic_count_keeps_the_tumour_of_the_noisy_phantom(self):
+        out = SCRATCH / "noisy-head.png"
+        arbor("run", "--phantom", "head", "--phantom-noise", 8, "--phantom-blobs", 20, "-o", out,
+              "--width", 128, "--height", 128)
+        r = json.loads((SCRATCH / "noisy-head.report.json").read_text())
+        self.assertTrue(r["simplification"]["automatic"])
+        self.assertTrue(any(sum((a - c) ** 2 for a, c in zip(b["extremum_position_mm"], (-27, 47, 10))) < 64
+                            for b in r["branches"]), "the tumour branch was not kept")
+
     def test_exr_output_with_depth(self):
         out = SCRATCH / "head.exr"
         arbor("run", "--phantom", "head", "--phantom-size", 48, "--keep", 6, "--width", 96, "--height", 64,

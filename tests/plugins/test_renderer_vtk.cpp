@@ -2,6 +2,7 @@
 // on the same scene with one global transfer function: the images agree to a
 // PSNR floor.  VTK renders through X: without a display these tests are
 // skipped (ctest runs under xvfb-run, see README).
+#include "global_ramp.hpp"
 #include "plugin_fixture.hpp"
 
 #include "core/phantom.hpp"
@@ -18,21 +19,6 @@ namespace arbor {
 namespace {
 
 constexpr uint32_t kSize = 192;
-
-// A global ramp over the phantom's values: air clear, scalp and bright
-// structures most opaque, colours from a heat map.
-void global_ramp(TransferFunctions &tf, double lo, double hi)
-{
-    std::vector<float> lut(256 * 4);
-    for (uint32_t i = 0; i < 256; ++i) {
-        const double u = i / 255.0;
-        lut[4 * i + 0] = static_cast<float>(std::min(1.0, 2.5 * u));
-        lut[4 * i + 1] = static_cast<float>(std::clamp(2.5 * u - 0.8, 0.0, 1.0));
-        lut[4 * i + 2] = static_cast<float>(std::clamp(3.0 * u - 2.0, 0.0, 1.0));
-        lut[4 * i + 3] = static_cast<float>(u < 0.15 ? 0.0 : 0.6 * (u - 0.15) / 0.85);
-    }
-    tf.assign(0, {lo, hi}, lut.data());
-}
 
 double psnr(const RenderedImage &a, const RenderedImage &b)
 {
@@ -57,7 +43,7 @@ TEST(VtkReference, CpuRayCasterAgreesWithVtkOnAGlobalTransferFunction)
     const Volume v = make_phantom(builtin_phantom("head"), o);
     const arbor_volume view = v.view();
     TransferFunctions tf(1, 256, 4.0 * v.geometry().spacing[0]);
-    global_ramp(tf, 0.0, 760.0);
+    test::global_ramp(tf, 0.0, 760.0);
     for (bool shading : {false, true})
         for (double azimuth : {0.0, 35.0}) {
             Orbit orbit;
