@@ -8,6 +8,7 @@
 #include "priority_lines.hpp"
 #include "plugin_choice.hpp"
 #include "topology_run.hpp"
+#include "filter_input.hpp"
 #include "volume_input.hpp"
 
 #include "host/simplifier_importance.hpp"
@@ -25,6 +26,7 @@ namespace {
 
 struct CompareArgs {
     VolumeInput input;
+    FilterInput filter;
     PluginChoice simplifiers{ARBOR_KIND_SIMPLIFIER, "simplifier"};
     std::string list = "itri,persistence,volume,hypervolume";
     CutRequest cut;
@@ -109,6 +111,7 @@ void add_compare_command(CLI::App &app, Context &context)
         "compare", "Compare simplifiers on one contour tree: kept branches, overlaps, Dice, priority lines");
     auto a = std::make_shared<CompareArgs>();
     a->input.add_to(*sub, context);
+    a->filter.add_to(*sub, context);
     sub->add_option("--simplifiers", a->list,
                     "Comma-separated simplifier plugins (ids or their last parts); the first one's branches are "
                     "the columns of the priority lines")
@@ -130,7 +133,8 @@ void add_compare_command(CLI::App &app, Context &context)
         }
         if (plugins.empty())
             throw std::invalid_argument("--simplifiers is empty");
-        const LoadedVolume in = a->input.load();
+        LoadedVolume in = a->input.load();
+        a->filter.apply(in, context);
         std::optional<Volume> truth;
         if (!a->truth.empty()) {
             truth = load_truth(a->truth, context);

@@ -2,6 +2,7 @@
 // persistence branch decomposition, in the columns of the TTK reference files.
 #include "commands.hpp"
 #include "topology_run.hpp"
+#include "filter_input.hpp"
 #include "volume_input.hpp"
 
 #include "core/atomic_file.hpp"
@@ -17,6 +18,7 @@ namespace {
 
 struct PairsArgs {
     VolumeInput input;
+    FilterInput filter;
     std::string output;
     bool timings = false;
 };
@@ -29,10 +31,12 @@ void add_pairs_command(CLI::App &app, Context &context)
         "pairs", "Write the persistence pairs of the contour tree (TTK's columns)");
     auto a = std::make_shared<PairsArgs>();
     a->input.add_to(*sub, context);
+    a->filter.add_to(*sub, context);
     sub->add_option("-o,--output", a->output, "Output text file ('-' for standard output)")->required();
     sub->add_flag("--timings", a->timings, "Print per-stage seconds and peak memory on stderr");
     context.add_command(sub, [a, &context]() {
-        const LoadedVolume in = a->input.load();
+        LoadedVolume in = a->input.load();
+        a->filter.apply(in, context);
         const topology::TopologyResult topo = run_topology(in.volume, topology::persistence_importance(), context);
         const topology::FieldView field{in.volume.type(), in.volume.data(),
                                         static_cast<uint32_t>(in.volume.voxel_count()),

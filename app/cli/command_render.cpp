@@ -9,6 +9,7 @@
 #include "simplification_run.hpp"
 #include "topology_run.hpp"
 #include "transfer_function_json.hpp"
+#include "filter_input.hpp"
 #include "volume_input.hpp"
 
 #include <cstdio>
@@ -20,6 +21,7 @@ namespace {
 
 struct RenderArgs {
     VolumeInput input;
+    FilterInput filter;
     PluginChoice simplifiers{ARBOR_KIND_SIMPLIFIER, "simplifier"};
     RenderOptions render;
     std::string tf, output;
@@ -32,6 +34,7 @@ void add_render_command(CLI::App &app, Context &context)
     CLI::App *sub = app.add_subcommand("render", "Render a volume with per-branch transfer functions from `arbor tf`");
     auto a = std::make_shared<RenderArgs>();
     a->input.add_to(*sub, context);
+    a->filter.add_to(*sub, context);
     sub->add_option("--tf", a->tf, "Transfer functions (arbor-transfer-functions/1 JSON)")->required();
     sub->add_option("-o,--output", a->output, "Image to write (.png or .exr)")->required();
     a->render.add_to(*sub, context);
@@ -40,7 +43,8 @@ void add_render_command(CLI::App &app, Context &context)
         const StoredTransferFunctions stored = read_transfer_functions(a->tf);
         const CutRequest cut = CutRequest::parse(stored.cut);
         PluginInstance &simplifier = a->simplifiers.resolve(stored.simplifier_id);
-        const LoadedVolume in = a->input.load();
+        LoadedVolume in = a->input.load();
+        a->filter.apply(in, context);
         const topology::TopologyResult topo = run_contour_tree(in.volume, context);
         const SimplifiedTree s = simplify_tree(topo.tree, in.volume, simplifier, cut, context);
         const std::size_t n = stored.extremum_vertex.size();

@@ -11,10 +11,10 @@
 #include "simplification_run.hpp"
 #include "topology_run.hpp"
 #include "transfer_function_stage.hpp"
+#include "filter_input.hpp"
 #include "volume_input.hpp"
 
 #include "core/stopwatch.hpp"
-#include "host/filter_run.hpp"
 #include "topology/importance_knee.hpp"
 
 #include <cstdio>
@@ -26,11 +26,11 @@ namespace {
 
 struct RunArgs {
     VolumeInput input;
-    PluginChoice filters{ARBOR_KIND_FILTER, "filter"};
+    FilterInput filter;
     PluginChoice simplifiers{ARBOR_KIND_SIMPLIFIER, "simplifier"};
     TransferFunctionStage stage;
     RenderOptions render;
-    std::string filter, simplifier = "itri";
+    std::string simplifier = "itri";
     CutRequest cut;
     std::string output, legend, report;
 };
@@ -48,8 +48,8 @@ void add_run_command(CLI::App &app, Context &context)
         "run", "The main job: topology-driven transfer functions and a rendered image of a volume");
     auto a = std::make_shared<RunArgs>();
     a->input.add_to(*sub, context);
+    a->filter.add_to(*sub, context);
     sub->add_option("-o,--output", a->output, "Image to write (.png or .exr)")->required();
-    sub->add_option("--filter", a->filter, "Filter plugin to apply before the contour tree");
     sub->add_option("--simplifier", a->simplifier, "Simplifier plugin (id or last part)")->default_val("itri");
     add_cut_options(*sub, a->cut,
                     "Keep branches whose relative importance exceeds T (default: the knee of the importance curve)");
@@ -58,7 +58,6 @@ void add_run_command(CLI::App &app, Context &context)
     a->stage.add_to(*sub, context);
     a->render.add_to(*sub, context);
     a->simplifiers.add_to(*sub, context, "Simplifier options");
-    a->filters.add_to(*sub, context, "Filter options");
     context.add_command(sub, [a, &context]() {
         a->stage.validate(false);
         const std::filesystem::path output(a->output);
@@ -69,16 +68,14 @@ void add_run_command(CLI::App &app, Context &context)
             if (!p.parent_path().empty())
                 std::filesystem::create_directories(p.parent_path());
         PluginInstance &simplifier = a->simplifiers.resolve(a->simplifier);
-        PluginInstance *filter = a->filter.empty() ? nullptr : &a->filters.resolve(a->filter);
 
         RunReport report;
         Stopwatch clock;
         LoadedVolume in = a->input.load();
         report.stage("import", clock.lap());
-        if (filter) {
-            in.volume = run_filter(*filter, in.volume, &context.progress, context.max_volume_bytes);
+        const PluginInstance *filter = a->filter.apply(in, context);
+        if (filter)
             report.stage("filter", clock.lap());
-        }
         const topology::TopologyResult topo = run_contour_tree(in.volume, context);
         report.stage("contour tree", clock.lap());
         CutRequest cut = a->cut;

@@ -8,6 +8,7 @@
 #include "simplification_run.hpp"
 #include "plugin_choice.hpp"
 #include "topology_run.hpp"
+#include "filter_input.hpp"
 #include "volume_input.hpp"
 
 #include <cstdio>
@@ -19,6 +20,7 @@ namespace {
 
 struct SimplifyArgs {
     VolumeInput input;
+    FilterInput filter;
     PluginChoice simplifiers{ARBOR_KIND_SIMPLIFIER, "simplifier"};
     std::string simplifier = "itri";
     CutRequest cut;
@@ -83,6 +85,7 @@ void add_simplify_command(CLI::App &app, Context &context)
         "simplify", "Simplify the contour tree with a simplifier plugin; write the kept branches and labels");
     auto a = std::make_shared<SimplifyArgs>();
     a->input.add_to(*sub, context);
+    a->filter.add_to(*sub, context);
     sub->add_option("--simplifier", a->simplifier,
                     "Simplifier plugin: an id or its last part (itri, persistence, volume, hypervolume, "
                     "n-measure)")
@@ -100,7 +103,8 @@ void add_simplify_command(CLI::App &app, Context &context)
         if (!a->cut.keep && !a->cut.threshold)
             throw std::invalid_argument("give --keep N or --threshold T");
         PluginInstance &simplifier = a->simplifiers.resolve(a->simplifier);
-        const LoadedVolume in = a->input.load();
+        LoadedVolume in = a->input.load();
+        a->filter.apply(in, context);
         topology::TopologyResult topo = run_contour_tree(in.volume, context);
         SimplifiedTree s = simplify_tree(topo.tree, in.volume, simplifier, a->cut, context);
         write_json(a->json, in, topo, s, a->cut);

@@ -9,6 +9,7 @@
 #include "topology_run.hpp"
 #include "transfer_function_json.hpp"
 #include "transfer_function_stage.hpp"
+#include "filter_input.hpp"
 #include "volume_input.hpp"
 
 #include <cstdio>
@@ -20,6 +21,7 @@ namespace {
 
 struct TfArgs {
     VolumeInput input;
+    FilterInput filter;
     PluginChoice simplifiers{ARBOR_KIND_SIMPLIFIER, "simplifier"};
     TransferFunctionStage stage;
     std::string simplifier = "itri";
@@ -37,6 +39,7 @@ void add_tf_command(CLI::App &app, Context &context)
         "tf", "Generate one transfer function per branch (residue-flow opacity, harmonic colours)");
     auto a = std::make_shared<TfArgs>();
     a->input.add_to(*sub, context);
+    a->filter.add_to(*sub, context);
     sub->add_option("--simplifier", a->simplifier, "Simplifier plugin (id or last part)")->default_val("itri");
     add_cut_options(*sub, a->cut, "Keep branches whose relative importance exceeds T (default: --keep 12)");
     sub->add_option("-o,--output", a->output, "Transfer functions (JSON, arbor-transfer-functions/1)")->required();
@@ -52,7 +55,8 @@ void add_tf_command(CLI::App &app, Context &context)
             a->cut.keep = 12;
         a->stage.validate(!a->legend.empty());
         PluginInstance &simplifier = a->simplifiers.resolve(a->simplifier);
-        const LoadedVolume in = a->input.load();
+        LoadedVolume in = a->input.load();
+        a->filter.apply(in, context);
         const topology::TopologyResult topo = run_contour_tree(in.volume, context);
         const SimplifiedTree s = simplify_tree(topo.tree, in.volume, simplifier, a->cut, context);
         const BranchTreeRecord tree(topo.tree, s.branches, s.cut, in.volume);

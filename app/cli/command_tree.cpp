@@ -6,6 +6,7 @@
 #include "label_map_output.hpp"
 #include "simplification_run.hpp"
 #include "topology_run.hpp"
+#include "filter_input.hpp"
 #include "volume_input.hpp"
 
 #include "topology/simplification.hpp"
@@ -22,6 +23,7 @@ namespace {
 
 struct TreeArgs {
     VolumeInput input;
+    FilterInput filter;
     std::string json;
     std::string labels;
     CutRequest cut; // optional here: without one, the whole hierarchy
@@ -211,6 +213,7 @@ void add_tree_command(CLI::App &app, Context &context)
         "tree", "Compute the contour tree and its branch decomposition (persistence) with measures");
     auto a = std::make_shared<TreeArgs>();
     a->input.add_to(*sub, context);
+    a->filter.add_to(*sub, context);
     sub->add_option("--json", a->json, "Write nodes, arcs and branches with measures as JSON")->required();
     add_cut_options(*sub, a->cut, "Also cut the hierarchy at this relative persistence, in [0, 1]");
     sub->add_option("--labels", a->labels, "With --keep/--threshold: write the voxel -> branch labels (NRRD)");
@@ -218,7 +221,8 @@ void add_tree_command(CLI::App &app, Context &context)
     context.add_command(sub, [a, &context]() {
         if (!a->labels.empty() && !a->cut.keep && !a->cut.threshold)
             throw std::invalid_argument("--labels needs --keep or --threshold");
-        const LoadedVolume in = a->input.load();
+        LoadedVolume in = a->input.load();
+        a->filter.apply(in, context);
         const topology::TopologyResult topo = run_topology(in.volume, topology::persistence_importance(), context);
         std::optional<topology::SimplificationCut> cut;
         if (a->cut.keep)

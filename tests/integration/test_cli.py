@@ -691,3 +691,45 @@ class Run(unittest.TestCase):
                 self.assertNotEqual(code, 0)
                 self.assertIn(message, err)
                 self.assertTrue(err.startswith("arbor: error:"), err)
+
+
+class Denoise(unittest.TestCase):
+    NOISY = ("--phantom", "head", "--phantom-size", 64, "--phantom-noise", 8)
+
+    def test_filter_before_the_tree(self):
+        raw, smooth = SCRATCH / "raw.json", SCRATCH / "smooth.json"
+        arbor("simplify", *self.NOISY, "--keep", 5, "--json", raw)
+        arbor("simplify", *self.NOISY, "--filter", "gaussian:sigma=4", "--keep", 5, "--json", smooth)
+        a, b = json.loads(raw.read_text()), json.loads(smooth.read_text())
+        self.assertGreater(a["contour_tree"]["branches"], 5 * b["contour_tree"]["branches"])
+        self.assertIn("gaussian:sigma=4", b["volume"]["source"])
+        # The same through the generated flag, and on the other commands.
+        arbor("tree", *self.NOISY, "--filter", "gaussian", "--gaussian.sigma", 4, "--json", SCRATCH / "t.json")
+        t = json.loads((SCRATCH / "t.json").read_text())
+        self.assertEqual(len(t["branches"]), b["contour_tree"]["branches"])
+        arbor("convert", *self.NOISY, "--filter", "median:size=3", "-o", SCRATCH / "median.nrrd")
+        self.assertEqual(info(SCRATCH / "median.nrrd")["dims"], [64, 64, 64])
+
+    def test_denoise_study_writes_csv_and_plot(self):
+        out = SCRATCH / "study"
+        code, stdout, _ = arbor("denoise-study", *self.NOISY, "--to", 4, "--steps", 5, "--out", out)
+        rows = (out / "study.csv").read_text().splitlines()
+        self.assertEqual(rows[0], "sigma,branches,minima,maxima,seconds,plateau")
+        values = [r.split(",") for r in rows[1:]]
+        self.assertEqual(len(values), 5)
+        counts = [int(v[1]) for v in values]
+        self.assertGreater(counts[0], 5 * counts[-1])
+        self.assertEqual(sum(int(v[5]) for v in values), 1)
+        for v in values:
+            self.assertEqual(int(v[1]), int(v[2]) + int(v[3]) - 1)
+        self.assertIn("suggested sigma", stdout)
+        self.assertEqual(png_size(out / "study.png"), (720, 440))
+
+    def test_bad_filter_specs_are_refused_clearly(self):
+        for spec, message in (("blur", "no filter 'blur'"), ("gaussian:radius=2", "has no parameter 'radius'"),
+                              ("gaussian:sigma", "is not key=value"), ("gaussian:sigma=-1", "sigma")):
+            with self.subTest(spec=spec):
+                code, _, err = arbor("tree", "--phantom", "head", "--phantom-size", 32, "--filter", spec,
+                                     "--json", SCRATCH / "bad.json", check=False)
+                self.assertNotEqual(code, 0)
+                self.assertIn(message, err)
