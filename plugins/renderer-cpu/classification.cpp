@@ -48,6 +48,7 @@ void Occupancy::build(const VoxelGrid &g, const ClassTable &table)
     empty_.assign(static_cast<std::size_t>(bx_ * by_ * bz_), 0);
     constexpr float kTransparent = 1.0f / 1024.0f;
     std::vector<uint32_t> labels;
+    int64_t lo_block[3] = {bx_, by_, bz_}, hi_block[3] = {-1, -1, -1};
     for (int64_t bk = 0; bk < bz_; ++bk)
         for (int64_t bj = 0; bj < by_; ++bj)
             for (int64_t bi = 0; bi < bx_; ++bi) {
@@ -73,7 +74,19 @@ void Occupancy::build(const VoxelGrid &g, const ClassTable &table)
                 for (std::size_t n = 0; empty && n < labels.size(); ++n)
                     empty = table.max_alpha(labels[n], lo, hi) < kTransparent;
                 empty_[static_cast<std::size_t>(bi + bx_ * (bj + by_ * bk))] = empty ? 1 : 0;
+                if (!empty) {
+                    const int64_t b[3] = {bi, bj, bk};
+                    for (int a = 0; a < 3; ++a) {
+                        lo_block[a] = std::min(lo_block[a], b[a]);
+                        hi_block[a] = std::max(hi_block[a], b[a]);
+                    }
+                }
             }
+    const int64_t n[3] = {g.nx, g.ny, g.nz};
+    for (int a = 0; a < 3; ++a) {
+        low_[a] = static_cast<double>(std::max<int64_t>(lo_block[a] * kBlock - 1, 0));
+        high_[a] = static_cast<double>(std::min<int64_t>((hi_block[a] + 1) * kBlock, n[a] - 1));
+    }
 }
 
 } // namespace arbor::raycast

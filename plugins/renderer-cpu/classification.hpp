@@ -9,6 +9,8 @@
 
 #include <arbor/transfer_function.h>
 
+#include <array>
+
 namespace arbor::raycast {
 
 class ClassTable {
@@ -43,10 +45,15 @@ public:
     void build(const VoxelGrid &g, const ClassTable &table);
     // True when every sample within block (bi, bj, bk) is transparent.
     bool empty(int64_t bi, int64_t bj, int64_t bk) const { return empty_[static_cast<std::size_t>(bi + bx_ * (bj + by_ * bk))]; }
+    // Voxel-index box around every non-empty block (lo > hi when all are
+    // empty): rays are clipped to it before they start.
+    const std::array<double, 3> &content_low() const { return low_; }
+    const std::array<double, 3> &content_high() const { return high_; }
 
 private:
     int64_t bx_ = 0, by_ = 0, bz_ = 0;
     std::vector<uint8_t> empty_;
+    std::array<double, 3> low_{}, high_{};
 };
 
 } // namespace arbor::raycast

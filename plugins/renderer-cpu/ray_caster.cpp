@@ -213,15 +213,16 @@ private:
         const Vec3 o = mul(g.to_voxel, {ray.origin[0] - g.origin[0], ray.origin[1] - g.origin[1],
                                         ray.origin[2] - g.origin[2]});
         const Vec3 d = mul(g.to_voxel, ray.direction); // voxels per mm
-        const double n[3] = {static_cast<double>(g.nx - 1), static_cast<double>(g.ny - 1), static_cast<double>(g.nz - 1)};
+        // Clipped to the box around the blocks that can be visible at all.
+        const std::array<double, 3> &lo = occupancy_.content_low(), &hi = occupancy_.content_high();
         double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
         for (int a = 0; a < 3; ++a) {
             if (std::fabs(d[a]) < 1e-12) {
-                if (o[a] < 0 || o[a] > n[a])
+                if (o[a] < lo[a] || o[a] > hi[a])
                     t1 = -1;
                 continue;
             }
-            double ta = (0 - o[a]) / d[a], tb = (n[a] - o[a]) / d[a];
+            double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
             if (ta > tb)
                 std::swap(ta, tb);
             t0 = std::max(t0, ta);
@@ -249,9 +250,11 @@ private:
             }
             const float fx = static_cast<float>(px - i), fy = static_cast<float>(py - j), fz = static_cast<float>(pz - k);
             const float value = trilinear(g, i, j, k, fx, fy, fz);
-            const int64_t ni = i + (fx >= 0.5f && g.nx > 1), nj = j + (fy >= 0.5f && g.ny > 1),
-                          nk = k + (fz >= 0.5f && g.nz > 1);
-            const std::size_t nearest = g.index(ni, nj, nk);
+            // The nearest voxel carries the label and the normal.
+            const std::size_t nearest =
+                labelled || shading.enabled
+                    ? g.index(i + (fx >= 0.5f && g.nx > 1), j + (fy >= 0.5f && g.ny > 1), k + (fz >= 0.5f && g.nz > 1))
+                    : 0;
             const float *c = table_.lookup(labelled ? g.label[nearest] : 0u, value);
             if (c[3] > 0.0f) {
                 float r = c[0], gr = c[1], b = c[2];
