@@ -59,6 +59,27 @@ void write_relative_measures(JsonStream &j, const topology::BranchDecomposition 
     write_measures(j, relative);
 }
 
+void write_contour_tree_summary(JsonStream &j, const topology::ContourTree &tree, double seconds,
+                                std::optional<std::size_t> branches)
+{
+    j.key("contour_tree");
+    j.raw("{");
+    j.key("nodes");
+    j.number(static_cast<double>(tree.node_count()));
+    j.raw(",");
+    j.key("arcs");
+    j.number(static_cast<double>(tree.arc_count()));
+    j.raw(",");
+    j.key("seconds");
+    j.number(seconds);
+    if (branches) {
+        j.raw(",");
+        j.key("branches");
+        j.number(static_cast<double>(*branches));
+    }
+    j.raw("}");
+}
+
 void write_volume_summary(JsonStream &j, const std::string &source, const Geometry &g)
 {
     j.key("volume");

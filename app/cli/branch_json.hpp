@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace arbor::cli {
@@ -25,6 +26,10 @@ void write_measures(JsonStream &j, const std::array<double, topology::kMeasureCo
 void write_relative_measures(JsonStream &j, const topology::BranchDecomposition &d, uint32_t branch);
 
 const char *branch_kind_name(topology::BranchKind k);
+
+// "contour_tree": {"nodes", "arcs", "seconds"}, plus "branches" when given.
+void write_contour_tree_summary(JsonStream &j, const topology::ContourTree &tree, double seconds,
+                                std::optional<std::size_t> branches = {});
 
 // "volume": {"source", "dims", "spacing_mm"}.
 void write_volume_summary(JsonStream &j, const std::string &source, const Geometry &g);
