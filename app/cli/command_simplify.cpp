@@ -41,14 +41,7 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
     j.raw(",\n");
     j.key("simplifier");
     j.raw("{");
-    j.key("id");
-    j.string(s.id);
-    j.raw(",");
-    j.key("name");
-    j.string(s.name);
-    j.raw(",");
-    j.key("version");
-    j.string(s.version);
+    write_simplifier_fields(j, s);
     j.raw("},\n");
     write_cut(j, request);
     j.raw(",\n");

@@ -62,14 +62,7 @@ void write_report_json(const std::filesystem::path &path, const ComparisonStudy 
     for (std::size_t r = 0; r < study.runs.size(); ++r) {
         const SimplifiedTree &s = study.runs[r].run;
         j.raw(r ? ",\n{" : "\n{");
-        j.key("id");
-        j.string(s.id);
-        j.raw(",");
-        j.key("name");
-        j.string(s.name);
-        j.raw(",");
-        j.key("version");
-        j.string(s.version);
+        write_simplifier_fields(j, s);
         j.raw(",");
         j.key("seconds");
         j.number(s.seconds);

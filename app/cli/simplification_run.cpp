@@ -113,6 +113,18 @@ std::vector<uint32_t> kept_depths(const topology::SimplificationCut &cut)
     return depth;
 }
 
+void write_simplifier_fields(JsonStream &j, const SimplifiedTree &s)
+{
+    j.key("id");
+    j.string(s.id);
+    j.raw(",");
+    j.key("name");
+    j.string(s.name);
+    j.raw(",");
+    j.key("version");
+    j.string(s.version);
+}
+
 void write_kept_branches(JsonStream &j, const topology::ContourTree &tree, const Volume &volume,
                          const SimplifiedTree &s)
 {

@@ -49,6 +49,10 @@ std::vector<std::string> kept_label_names(const topology::BranchDecomposition &d
 // Depth of every kept branch in the simplified hierarchy (root 0).
 std::vector<uint32_t> kept_depths(const topology::SimplificationCut &cut);
 
+// "id", "name", "version" of the simplifier that made `s` (fields of an
+// object the caller opens).
+void write_simplifier_fields(JsonStream &j, const SimplifiedTree &s);
+
 // A JSON array with one object per kept branch: label, branch, parent label,
 // kind, depth, importance, extremum and saddle points, measures absolute
 // and relative.

@@ -57,20 +57,13 @@ int main()
         orbit.azimuth = 30;
         orbit.elevation = 20;
         const arbor_camera camera = orbit_camera(v.geometry(), orbit);
-        arbor_render_request r{};
-        r.struct_size = sizeof r;
-        r.volume = &view;
-        r.transfer_functions = &tf.record();
-        r.camera = &camera;
-        r.background[3] = 1.0f;
-        r.volume_revision = 1;
+        const arbor_render_request r = test::global_request(view, tf, camera);
         double fps[2][2];
         for (int shading = 0; shading < 2; ++shading) {
             PluginInstance cpu = test::built_plugins().create("org.arbor.renderer.cpu-raycast");
             PluginInstance vtk = test::built_plugins().create("org.arbor.renderer.vtk-reference");
             for (PluginInstance *p : {&cpu, &vtk})
-                p->set_param("shading",
-                             parse_param_value(*p->find_param("shading"), shading ? "true" : "false").value);
+                test::set_shading(*p, shading);
             fps[shading][0] = frames_per_second(cpu, r, 4);
             fps[shading][1] = frames_per_second(vtk, r, 4);
         }

@@ -50,17 +50,11 @@ TEST(VtkReference, CpuRayCasterAgreesWithVtkOnAGlobalTransferFunction)
             orbit.azimuth = azimuth;
             orbit.elevation = 15;
             const arbor_camera camera = orbit_camera(v.geometry(), orbit);
-            arbor_render_request r{};
-            r.struct_size = sizeof r;
-            r.volume = &view;
-            r.transfer_functions = &tf.record();
-            r.camera = &camera;
-            r.background[3] = 1.0f;
-            r.volume_revision = 1;
+            const arbor_render_request r = test::global_request(view, tf, camera);
             PluginInstance cpu = test::built_plugins().create("org.arbor.renderer.cpu-raycast");
             PluginInstance vtk = test::built_plugins().create("org.arbor.renderer.vtk-reference");
             for (PluginInstance *p : {&cpu, &vtk})
-                p->set_param("shading", parse_param_value(*p->find_param("shading"), shading ? "true" : "false").value);
+                test::set_shading(*p, shading);
             const RenderedImage a = render_image(cpu, r, kSize, kSize);
             const RenderedImage b = render_image(vtk, r, kSize, kSize);
             const double db = psnr(a, b);

@@ -1,7 +1,11 @@
-// global_ramp.hpp - one global transfer function for renderer comparisons:
-// clear below 15% of [lo, hi], then an opacity ramp to 0.6 with heat colours.
+// global_ramp.hpp - the scene of the renderer comparisons (CPU vs VTK): one
+// global transfer function, clear below 15% of [lo, hi], then an opacity ramp
+// to 0.6 with heat colours; a request over an opaque black background; and
+// shading switched on or off on both renderers alike.
 #pragma once
 
+#include "host/param_text.hpp"
+#include "host/rendering.hpp"
 #include "host/tf_generation.hpp"
 
 #include <algorithm>
@@ -20,6 +24,24 @@ inline void global_ramp(TransferFunctions &tf, double lo, double hi)
         lut[4 * i + 3] = static_cast<float>(u < 0.15 ? 0.0 : 0.6 * (u - 0.15) / 0.85);
     }
     tf.assign(0, {lo, hi}, lut.data());
+}
+
+inline arbor_render_request global_request(const arbor_volume &volume, const TransferFunctions &tf,
+                                           const arbor_camera &camera)
+{
+    arbor_render_request r{};
+    r.struct_size = sizeof r;
+    r.volume = &volume;
+    r.transfer_functions = &tf.record();
+    r.camera = &camera;
+    r.background[3] = 1.0f;
+    r.volume_revision = 1;
+    return r;
+}
+
+inline void set_shading(PluginInstance &renderer, bool on)
+{
+    renderer.set_param("shading", parse_param_value(*renderer.find_param("shading"), on ? "true" : "false").value);
 }
 
 } // namespace arbor::test
