@@ -24,7 +24,14 @@ struct Context {
     // The run function of each subcommand, by subcommand name.
     std::map<std::string, std::function<int()>> commands;
 
-    void add_command(CLI::App *sub, std::function<int()> run) { commands[sub->get_name()] = std::move(run); }
+    // Registers under the command's path below `arbor` ("info", "dicom ls").
+    void add_command(CLI::App *sub, std::function<int()> run)
+    {
+        std::string name = sub->get_name();
+        for (CLI::App *p = sub->get_parent(); p && p->get_parent(); p = p->get_parent())
+            name = p->get_name() + " " + name;
+        commands[name] = std::move(run);
+    }
 };
 
 // Path of the running executable (/proc/self/exe), for the built-in plugins.

@@ -19,5 +19,6 @@ void add_tf_command(CLI::App &app, Context &context);
 void add_render_command(CLI::App &app, Context &context);
 void add_run_command(CLI::App &app, Context &context);
 void add_denoise_study_command(CLI::App &app, Context &context);
+void add_dicom_command(CLI::App &app, Context &context);
 
 } // namespace arbor::cli

@@ -56,6 +56,7 @@ int main(int argc, char **argv)
     app.require_subcommand(1);
 
     cli::add_info_command(app, context);
+    cli::add_dicom_command(app, context);
     cli::add_phantom_command(app, context);
     cli::add_convert_command(app, context);
     cli::add_tree_command(app, context);
@@ -82,7 +83,12 @@ int main(int argc, char **argv)
         return 2;
     }
 
-    const std::string name = app.get_subcommands().front()->get_name();
+    // Nested commands ("dicom ls") register under their full path.
+    std::string name;
+    for (CLI::App *sub = &app; !sub->get_subcommands().empty();) {
+        sub = sub->get_subcommands().front();
+        name += (name.empty() ? "" : " ") + sub->get_name();
+    }
     try {
         return context.commands.at(name)();
     } catch (const std::exception &e) {

@@ -1,6 +1,7 @@
 #include "volume_input.hpp"
 
 #include "core/phantom.hpp"
+#include "host/param_text.hpp"
 #include "host/volume_import.hpp"
 
 #include <stdexcept>
@@ -11,7 +12,7 @@ void VolumeInput::add_to(CLI::App &command, Context &context)
 {
     context_ = &context;
     auto *file = command.add_option("volume", path_,
-                                    "Volume file or folder (NRRD, MetaImage, VTK, NIfTI, raw...)");
+                                    "Volume file or folder (DICOM folder or file, NRRD, MetaImage, VTK, NIfTI, raw...)");
     auto *phantom = command.add_option("--phantom", phantom_,
                                        "Use a built-in synthetic volume instead of a file (head)");
     phantom->check(CLI::IsMember(builtin_phantom_kinds()));
@@ -26,6 +27,10 @@ void VolumeInput::add_to(CLI::App &command, Context &context)
     phantom->group("Input");
     file->group("Input");
     command.add_option("--importer", importer_, "Importer plugin id (default: chosen by probing the file)")
+        ->group("Input");
+    command.add_option("--series", series_,
+                       "DICOM folders: the series to read, by Series Instance UID or its number in "
+                       "`arbor dicom ls` (needed when the folder holds several)")
         ->group("Input");
 
     for (const PluginInfo *info : context.registry.plugins_of_kind(ARBOR_KIND_IMPORTER)) {
@@ -63,6 +68,12 @@ LoadedVolume VolumeInput::load()
             importer = &p;
     if (!importer)
         throw std::invalid_argument("no importer plugin with id '" + id + "' (see `arbor plugins`)");
+    if (!series_.empty()) {
+        const arbor_param_desc *d = importer->find_param("series");
+        if (!d)
+            throw std::invalid_argument("--series applies to DICOM input; " + id + " reads " + path_);
+        importer->set_param("series", parse_param_value(*d, series_).value);
+    }
     options_.apply(*importer);
     out.volume = import_volume(*importer, path_, &context_->progress, context_->max_volume_bytes);
     out.source = path_;

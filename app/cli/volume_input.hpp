@@ -36,6 +36,7 @@ private:
     int phantom_blobs_ = 0;
     uint64_t phantom_seed_ = 1;
     std::string importer_;
+    std::string series_;
     std::vector<PluginInstance> importers_;
     PluginOptions options_;
 };
