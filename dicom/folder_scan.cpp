@@ -70,7 +70,10 @@ FolderScan scan_dicom(const fs::path &path, const ScanProgress &progress)
         if (progress && (i % 16 == 0))
             progress(static_cast<double>(i) / static_cast<double>(files.size()));
         const fs::path &file = files[i];
-        if (file.filename() == "DICOMDIR" || !looks_like_dicom(file)) {
+        // A file named on its own is always handed to DCMTK, so that the
+        // user hears why it is not DICOM.
+        const bool named = files.size() == 1 && file == path;
+        if (file.filename() == "DICOMDIR" || (!named && !looks_like_dicom(file))) {
             scan.not_dicom.push_back(file);
             continue;
         }
@@ -129,10 +132,22 @@ const Series &select_series(const FolderScan &scan, const std::string &selector)
     if (with_images.size() == 1)
         return *with_images.front();
     if (with_images.empty()) {
+        if (scan.series.empty() && scan.unreadable.size() == 1)
+            throw std::runtime_error(scan.unreadable.front().reason);
         std::string why;
+        if (!scan.series.empty()) {
+            const ImageRecord &r = scan.series.front().first();
+            why += "; " + std::to_string(scan.series.size()) + " DICOM series without pixel data, first " +
+                   (!r.modality.empty()         ? r.modality
+                    : !r.sop_class_uid.empty() ? "SOP class " + r.sop_class_uid
+                                               : std::string("an object without Modality or SOP Class")) + " in " +
+                   r.path.filename().string();
+        }
         if (!scan.unreadable.empty())
-            why = "; " + std::to_string(scan.unreadable.size()) + " file(s) could not be read, first " +
-                  scan.unreadable.front().reason;
+            why += "; " + std::to_string(scan.unreadable.size()) + " file(s) could not be read, first " +
+                   scan.unreadable.front().reason;
+        if (scan.series.empty() && scan.unreadable.empty())
+            why += " (" + std::to_string(scan.not_dicom.size()) + " file(s), none of them DICOM)";
         throw std::runtime_error(where + ": no DICOM images found" + why);
     }
     throw std::runtime_error(where + " holds " + std::to_string(with_images.size()) +

@@ -8,7 +8,9 @@
 #include "dicom/image_record.hpp"
 #include "dicom/series_volume.hpp"
 
+#include <cstring>
 #include <filesystem>
+#include <strings.h>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -98,6 +100,11 @@ public:
             return 100;
         if (dicom::looks_like_dicom(head, static_cast<std::size_t>(head_size)))
             return 30;
+        // A .dcm file nothing else reads: let DCMTK say what is wrong with it.
+        for (const char *suffix : {".dcm", ".dicom", ".ima"})
+            if (path.size() > std::strlen(suffix) &&
+                strcasecmp(path.c_str() + path.size() - std::strlen(suffix), suffix) == 0)
+                return 5;
         return 0;
     }
 
@@ -111,7 +118,9 @@ public:
         policy.correct_tilt = params().choice("gantry-tilt") == "correct";
         try {
             scan_ = dicom::scan_dicom(path, [&](double f) { task.progress(f, "scanning DICOM files"); });
-            report_skipped();
+            std::error_code ec;
+            if (fs::is_directory(path, ec))
+                report_skipped();
             const dicom::Series &series = dicom::select_series(*scan_, params().text("series"));
             plan_.emplace(series, policy);
         } catch (const sdk::Error &) {
