@@ -110,7 +110,8 @@ const Series &select_series(const FolderScan &scan, const std::string &selector)
 {
     std::string choices;
     for (std::size_t i = 0; i < scan.series.size(); ++i)
-        choices += "\n" + row_text(scan.series[i], i + 1);
+        if (scan.series[i].frame_count() > 0)
+            choices += "\n" + row_text(scan.series[i], i + 1);
     const std::string where = scan.root.string();
     if (!selector.empty()) {
         for (const Series &s : scan.series)
@@ -122,7 +123,7 @@ const Series &select_series(const FolderScan &scan, const std::string &selector)
             if (row >= 1 && row <= scan.series.size())
                 return scan.series[row - 1];
         }
-        throw std::runtime_error(where + ": no series '" + selector + "'; the series are:" +
+        throw std::runtime_error(where + ": no series '" + selector + "'; the series with images are:" +
                                  (choices.empty() ? " none" : choices));
     }
     std::vector<const Series *> with_images;

@@ -315,17 +315,21 @@ ImageRecord read_image_record(const fs::path &path)
     const DcmXfer xfer(ds.getOriginalXfer());
     r.transfer_syntax_uid = xfer.getXferID();
     r.transfer_syntax_name = xfer.getXferName();
-    r.sop_class_uid = text(ds, DCM_SOPClassUID);
-    r.sop_instance_uid = text(ds, DCM_SOPInstanceUID);
-    r.study_uid = text(ds, DCM_StudyInstanceUID);
-    r.series_uid = text(ds, DCM_SeriesInstanceUID);
-    r.patient_name = text(ds, DCM_PatientName);
-    r.patient_id = text(ds, DCM_PatientID);
-    r.study_date = text(ds, DCM_StudyDate);
-    r.study_description = text(ds, DCM_StudyDescription);
-    r.series_description = text(ds, DCM_SeriesDescription);
-    r.series_number = text(ds, DCM_SeriesNumber);
-    r.modality = text(ds, DCM_Modality);
+    const std::pair<std::string ImageRecord::*, DcmTagKey> identity[] = {
+        {&ImageRecord::sop_class_uid, DCM_SOPClassUID},
+        {&ImageRecord::sop_instance_uid, DCM_SOPInstanceUID},
+        {&ImageRecord::study_uid, DCM_StudyInstanceUID},
+        {&ImageRecord::series_uid, DCM_SeriesInstanceUID},
+        {&ImageRecord::patient_name, DCM_PatientName},
+        {&ImageRecord::patient_id, DCM_PatientID},
+        {&ImageRecord::study_date, DCM_StudyDate},
+        {&ImageRecord::study_description, DCM_StudyDescription},
+        {&ImageRecord::series_description, DCM_SeriesDescription},
+        {&ImageRecord::series_number, DCM_SeriesNumber},
+        {&ImageRecord::modality, DCM_Modality},
+    };
+    for (const auto &[member, tag] : identity)
+        r.*member = text(ds, tag);
     r.image_type = values(ds, DCM_ImageType);
     RecordReader reader(path, ds);
     if (auto n = reader.number(ds, DCM_InstanceNumber, "Instance Number"))

@@ -40,8 +40,8 @@ std::string agreement_key(const ImageRecord &r)
     std::string key = std::to_string(r.columns) + "x" + std::to_string(r.rows);
     if (g.orientation) {
         key += " " + plane_name(*g.orientation) + " (";
-        for (double v : *g.orientation)
-            key += number(std::round(v * 1e4) / 1e4) + (&v == &g.orientation->back() ? ")" : ",");
+        for (std::size_t i = 0; i < 6; ++i)
+            key += number(std::round((*g.orientation)[i] * 1e4) / 1e4 + 0.0) + (i == 5 ? ")" : ",");
     }
     if (g.pixel_spacing)
         key += ", pixels " + number((*g.pixel_spacing)[1]) + "x" + number((*g.pixel_spacing)[0]) + " mm";

@@ -437,9 +437,11 @@ class DicomRobustness(unittest.TestCase):
         self.assertTrue(all(s["problem"] for s in refused))
 
     def test_broken_and_foreign_files_do_not_stop_the_rest_of_the_folder(self):
-        series = small_series(count=8)
+        series = small_series(count=9)
         folder = write_series(series[:7], SCRATCH / "damaged")
         series[7].save_as(folder / "truncated.dcm", write_like_original=False)
+        del series[8].PixelData
+        series[8].save_as(folder / "no-pixels.dcm", write_like_original=False)
         data = (folder / "truncated.dcm").read_bytes()
         (folder / "truncated.dcm").write_bytes(data[:len(data) - 3000])
         (folder / "notes.txt").write_text("scanned on Tuesday\n")
@@ -449,6 +451,7 @@ class DicomRobustness(unittest.TestCase):
         self.assertEqual(voxels.shape, (7, 64, 64))
         self.assertIn("could not be read and were left out", err)
         self.assertIn("truncated.dcm", err)
+        self.assertIn("left out 1 object(s) without an image, first no-pixels.dcm", err)
         listing = json.loads(arbor("dicom", "ls", folder, "--json")[1])
         self.assertIn(str(folder / "notes.txt"), listing["not_dicom"])
         self.assertIn(str(folder / "garbage.dcm"), listing["not_dicom"])
