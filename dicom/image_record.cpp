@@ -31,10 +31,31 @@ std::string trimmed(const OFString &s)
     return t.substr(b, t.find_last_not_of(" \t\r\n") - b + 1);
 }
 
+// Bytes that are not valid UTF-8 (a character set DCMTK could not convert)
+// become '?', so names can be printed and written to JSON as they are.
+std::string valid_utf8(std::string s)
+{
+    std::size_t i = 0;
+    while (i < s.size()) {
+        const auto c = static_cast<unsigned char>(s[i]);
+        const std::size_t n = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+        bool ok = n > 0 && i + n <= s.size();
+        for (std::size_t k = 1; ok && k < n; ++k)
+            ok = (static_cast<unsigned char>(s[i + k]) & 0xC0) == 0x80;
+        if (ok) {
+            i += n;
+        } else {
+            s[i] = '?';
+            ++i;
+        }
+    }
+    return s;
+}
+
 std::string text(DcmItem &item, const DcmTagKey &tag)
 {
     OFString s;
-    return item.findAndGetOFStringArray(tag, s).good() ? trimmed(s) : std::string();
+    return item.findAndGetOFStringArray(tag, s).good() ? valid_utf8(trimmed(s)) : std::string();
 }
 
 std::vector<std::string> values(DcmItem &item, const DcmTagKey &tag)
@@ -310,6 +331,9 @@ ImageRecord read_image_record(const fs::path &path)
     if (status.bad())
         throw std::runtime_error(path.string() + ": not readable as DICOM (" + status.text() + ")");
     DcmDataset &ds = *file.getDataset();
+    // Names and descriptions in UTF-8 whatever Specific Character Set says;
+    // what cannot be converted is cleaned up by text().
+    ds.convertToUTF8();
     ImageRecord r;
     r.path = path;
     const DcmXfer xfer(ds.getOriginalXfer());

@@ -49,9 +49,15 @@ std::string fixed(double v, int digits)
     return buf;
 }
 
+// At most `width` bytes, never cutting a UTF-8 character in half.
 std::string clip(const std::string &s, std::size_t width)
 {
-    return s.size() <= width ? s : s.substr(0, width - 1) + "~";
+    if (s.size() <= width)
+        return s;
+    std::size_t end = width - 1;
+    while (end > 0 && (static_cast<unsigned char>(s[end]) & 0xC0) == 0x80)
+        --end;
+    return s.substr(0, end) + "~";
 }
 
 std::string date_text(const std::string &d)

@@ -456,6 +456,19 @@ class DicomRobustness(unittest.TestCase):
         self.assertIn(str(folder / "notes.txt"), listing["not_dicom"])
         self.assertIn(str(folder / "garbage.dcm"), listing["not_dicom"])
 
+    def test_names_in_other_character_sets_are_listed_in_utf8(self):
+        series = small_series(count=2)
+        for d in series:
+            d.SpecificCharacterSet = "ISO_IR 100"
+            d.PatientName = "M\u00fcller^J\u00fcrgen"
+            d.SeriesDescription = "Sch\u00e4del nativ"
+        folder = write_series(series, SCRATCH / "latin1")
+        self.assertIn(b"M\xfcller", (folder / "img000.dcm").read_bytes())  # stored as Latin-1
+        listing = json.loads(arbor("dicom", "ls", folder, "--json")[1])
+        self.assertEqual(listing["series"][0]["patient_name"], "M\u00fcller^J\u00fcrgen")
+        self.assertEqual(listing["series"][0]["description"], "Sch\u00e4del nativ")
+        self.assertIn("M\u00fcller^J\u00fcrgen", arbor("dicom", "ls", folder)[1])
+
     def test_series_selection(self):
         code, _, err = arbor("info", VARIANTS, check=False)
         self.assertEqual(code, 1)
