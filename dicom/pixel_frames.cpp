@@ -1,8 +1,11 @@
 #include "pixel_frames.hpp"
 
 #include "dcmtk_setup.hpp"
+#include "jpeg2000_codestream.hpp"
 
 #include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcpixseq.h>
+#include <dcmtk/dcmdata/dcpxitem.h>
 #include <dcmtk/dcmdata/dctk.h>
 
 #include <stdexcept>
@@ -19,10 +22,16 @@ bool is_lossy(E_TransferSyntax xfer)
     case EXS_JPEGProcess6_8:
     case EXS_JPEGProcess10_12:
     case EXS_JPEGLSLossy:
+    case EXS_JPEG2000:
         return true;
     default:
         return false;
     }
+}
+
+bool is_jpeg2000(E_TransferSyntax xfer)
+{
+    return xfer == EXS_JPEG2000LosslessOnly || xfer == EXS_JPEG2000;
 }
 
 bool decodable(E_TransferSyntax xfer)
@@ -42,7 +51,7 @@ bool decodable(E_TransferSyntax xfer)
     case EXS_RLELossless:
         return true;
     default:
-        return false;
+        return is_jpeg2000(xfer);
     }
 }
 
@@ -50,6 +59,49 @@ std::string syntax_text(E_TransferSyntax xfer)
 {
     const DcmXfer x(xfer);
     return std::string(x.getXferName()) + " (" + x.getXferID() + ")";
+}
+
+// All frames of encapsulated JPEG 2000 pixel data, decoded with OpenJPEG.
+std::vector<int32_t> decode_jpeg2000(DcmDataset &ds, E_TransferSyntax xfer, const ImageRecord &record)
+{
+    const std::string name = record.path.string();
+    DcmElement *element = nullptr;
+    DcmPixelSequence *fragments = nullptr;
+    if (ds.findAndGetElement(DCM_PixelData, element).bad() || !element ||
+        static_cast<DcmPixelData *>(element)->getEncapsulatedRepresentation(xfer, nullptr, fragments).bad() ||
+        !fragments)
+        throw std::runtime_error(name + ": cannot read its encapsulated JPEG 2000 pixel data");
+    // Item 0 is the offset table; a frame may span several fragments, and
+    // each frame starts with a JPEG 2000 signature.
+    std::vector<std::vector<uint8_t>> frames;
+    for (unsigned long i = 1; i < fragments->card(); ++i) {
+        DcmPixelItem *item = nullptr;
+        Uint8 *bytes = nullptr;
+        if (fragments->getItem(item, i).bad() || !item || item->getUint8Array(bytes).bad())
+            throw std::runtime_error(name + ": cannot read JPEG 2000 fragment " + std::to_string(i));
+        const std::size_t size = item->getLength();
+        if (size == 0 || !bytes)
+            continue;
+        if (frames.empty() || starts_jpeg2000_frame(bytes, size))
+            frames.emplace_back();
+        frames.back().insert(frames.back().end(), bytes, bytes + size);
+    }
+    if (frames.size() != record.frames.size())
+        throw std::runtime_error(name + ": its JPEG 2000 pixel data holds " + std::to_string(frames.size()) +
+                                 " frame(s), the header says " + std::to_string(record.frames.size()));
+    const std::size_t plane = std::size_t{record.rows} * record.columns;
+    std::vector<int32_t> decoded(plane * frames.size());
+    std::vector<int32_t> one;
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+        try {
+            decode_jpeg2000_frame(frames[f].data(), frames[f].size(), record.columns, record.rows, one);
+        } catch (const std::runtime_error &e) {
+            throw std::runtime_error(name + ": frame " + std::to_string(f + 1) + " of its " +
+                                     syntax_text(xfer) + " pixel data: " + e.what());
+        }
+        std::copy(one.begin(), one.end(), decoded.begin() + static_cast<std::ptrdiff_t>(f * plane));
+    }
+    return decoded;
 }
 
 } // namespace
@@ -61,9 +113,12 @@ bool can_decode_transfer_syntax(const std::string &uid)
 
 std::string undecodable_syntax_message(const std::string &uid)
 {
-    return "pixel data is compressed as " + syntax_text(DcmXfer(uid.c_str()).getXfer()) +
-           ", which DCMTK 3.6.7 cannot decode (it decodes JPEG baseline, extended and lossless, "
-           "JPEG-LS and RLE)";
+    const DcmXfer x(uid.c_str());
+    const std::string name = x.getXfer() == EXS_Unknown ? "an unknown transfer syntax (" + uid + ")"
+                                                         : syntax_text(x.getXfer());
+    return "pixel data is compressed as " + name +
+           ", which Arbor cannot decode (it decodes JPEG baseline, extended and lossless, JPEG-LS "
+           "and RLE with DCMTK, and JPEG 2000 with OpenJPEG)";
 }
 
 int transfer_syntax_rank(const std::string &uid)
@@ -89,6 +144,10 @@ DecodedImage::DecodedImage(const ImageRecord &record) : record_(record), file_(s
     const E_TransferSyntax xfer = ds.getOriginalXfer();
     if (!decodable(xfer))
         throw std::runtime_error(name + ": " + undecodable_syntax_message(DcmXfer(xfer).getXferID()));
+    if (is_jpeg2000(xfer)) {
+        decoded_ = decode_jpeg2000(ds, xfer, record);
+        return;
+    }
     const OFCondition decoded = ds.chooseRepresentation(EXS_LittleEndianExplicit, nullptr);
     if (decoded.bad() || !ds.canWriteXfer(EXS_LittleEndianExplicit))
         throw std::runtime_error(name + ": decoding its " + syntax_text(xfer) + " pixel data failed (" +
@@ -122,6 +181,7 @@ DecodedImage::DecodedImage(const ImageRecord &record) : record_(record), file_(s
 
 DecodedImage::~DecodedImage() = default;
 
+
 void DecodedImage::stored_values(uint32_t frame, double *out) const
 {
     const uint64_t n = uint64_t{record_.rows} * record_.columns;
@@ -137,7 +197,13 @@ void DecodedImage::stored_values(uint32_t frame, double *out) const
         return static_cast<double>(v);
     };
     const uint64_t first = n * frame;
-    if (record_.bits_allocated == 8) {
+    if (!decoded_.empty()) {
+        // JPEG 2000 samples are values, not words: no High Bit shift; the
+        // mask and sign follow the header, as pydicom does when a
+        // codestream's signedness disagrees with Pixel Representation.
+        for (uint64_t i = 0; i < n; ++i)
+            out[i] = value(static_cast<uint64_t>(static_cast<int64_t>(decoded_[first + i])) << shift);
+    } else if (record_.bits_allocated == 8) {
         for (uint64_t i = 0; i < n; ++i)
             out[i] = value(bytes8_[first + i]);
     } else if (record_.bits_allocated == 16) {

@@ -1,6 +1,7 @@
-// pixel_frames.hpp - decoding one DICOM file's pixel data through DCMTK
-// (including JPEG, JPEG-LS and RLE compressed transfer syntaxes) and reading
-// its frames as stored values: masked to Bits Stored, sign-extended.
+// pixel_frames.hpp - decoding one DICOM file's pixel data (uncompressed and
+// deflated, JPEG, JPEG-LS and RLE through DCMTK's decoders, JPEG 2000 through
+// OpenJPEG) and reading its frames as stored values: masked to Bits Stored,
+// sign-extended.
 #pragma once
 
 #include "image_record.hpp"
@@ -31,13 +32,13 @@ private:
     std::unique_ptr<DcmFileFormat> file_;
     const uint8_t *bytes8_ = nullptr;
     const uint16_t *words16_ = nullptr;
+    std::vector<int32_t> decoded_; // JPEG 2000 samples, all frames
 };
 
-// Whether DCMTK (with the decoders Arbor registers) can decode pixel data in
-// transfer syntax `uid`.
+// Whether Arbor can decode pixel data in transfer syntax `uid`.
 bool can_decode_transfer_syntax(const std::string &uid);
 
-// "pixel data is compressed as <name> (<uid>), which DCMTK 3.6.7 cannot decode ...".
+// "pixel data is compressed as <name> (<uid>), which Arbor cannot decode ...".
 std::string undecodable_syntax_message(const std::string &uid);
 
 // Preference among duplicate copies of an image: lower is better (native,

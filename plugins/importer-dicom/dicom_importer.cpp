@@ -30,7 +30,7 @@ const arbor_plugin_descriptor kDescriptor = {
     "Arbor",
     "Reads a DICOM series from a folder (scanned recursively) or a single DICOM file: slices "
     "ordered along the slice normal, LPS geometry, rescale to HU, MONOCHROME1, pixel padding, "
-    "enhanced multi-frame, and JPEG, JPEG-LS and RLE compressed images (via DCMTK).",
+    "enhanced multi-frame, and JPEG, JPEG-LS, RLE (DCMTK) and JPEG 2000 (OpenJPEG) compressed images.",
     "",
 };
 

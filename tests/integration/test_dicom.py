@@ -185,7 +185,7 @@ class DicomCompressed(unittest.TestCase):
     def test_lossless_syntaxes_decode_to_the_reference(self):
         for kind in ("CT1", "MR1"):
             expected = self.reference(WG04 / f"{kind}_UNC.dcm")
-            for syntax in ("UNC", "JPLL", "JLSL", "RLE"):
+            for syntax in ("UNC", "JPLL", "JLSL", "J2KR", "RLE"):
                 with self.subTest(kind=kind, syntax=syntax):
                     fields, voxels, err = convert(WG04 / f"{kind}_{syntax}.dcm", f"{kind}_{syntax}")
                     expected.check(self, fields, voxels)
@@ -202,23 +202,43 @@ class DicomCompressed(unittest.TestCase):
         _, voxels, _ = convert(WG04 / "MR1_JPLY.dcm", "MR1_JPLY")
         self.assertLess(np.abs(voxels - mr.values).mean(), 0.01 * np.ptp(mr.values))
 
-    def test_jpeg_2000_is_refused_naming_the_syntax(self):
-        for name, uid in (("CT1_J2KR", "1.2.840.10008.1.2.4.90"), ("MR1_J2KI", "1.2.840.10008.1.2.4.91")):
-            code, _, err = arbor("info", WG04 / f"{name}.dcm", check=False)
-            self.assertEqual(code, 1, name)
-            self.assertIn("JPEG 2000", err)
-            self.assertIn(uid, err)
-            self.assertIn("cannot decode", err)
+    def test_jpeg_2000_lossy_stays_close(self):
+        # README of the data: J2KI max abs error 352 (CT1) / 396 (MR1).
+        for kind, bound in (("CT1", 352), ("MR1", 396)):
+            fields, voxels, _ = convert(WG04 / f"{kind}_J2KI.dcm", f"{kind}_J2KI")
+            # Exactly what pydicom (through Pillow's OpenJPEG) decodes...
+            self.reference(WG04 / f"{kind}_J2KI.dcm").check(self, fields, voxels)
+            # ...and within the documented error of the original.
+            original = self.reference(WG04 / f"{kind}_UNC.dcm")
+            real = ~original.padded & (voxels > voxels.min())
+            diff = np.abs(voxels[real].astype(float) - original.values[real])
+            self.assertLessEqual(diff.max(), bound, kind)
+
+    def test_an_undecodable_syntax_is_refused_naming_it(self):
+        from pydicom.encaps import encapsulate
+        d = pydicom.dcmread(VARIANTS / "MR_small.dcm")
+        d.file_meta.TransferSyntaxUID = "1.2.840.10008.1.2.4.100"  # MPEG2 video
+        d.PixelData = encapsulate([b"\x00\x00\x01\xb3" + bytes(60)])
+        d["PixelData"].VR = "OB"
+        d.is_implicit_VR, d.is_little_endian = False, True
+        path = SCRATCH / "mpeg2.dcm"
+        d.save_as(path, write_like_original=False)
+        code, _, err = arbor("info", path, check=False)
+        self.assertEqual(code, 1)
+        self.assertIn("MPEG2", err)
+        self.assertIn("1.2.840.10008.1.2.4.100", err)
+        self.assertIn("cannot decode", err)
 
     def test_byte_orders_and_syntaxes_of_the_small_images(self):
         mr = self.reference(VARIANTS / "MR_small.dcm")
         for name in ("MR_small_implicit", "MR_small_bigendian", "MR_small_expb", "MR_small_RLE",
-                     "MR_small_jpeg_ls_lossless", "MR_small_padded"):
+                     "MR_small_jpeg_ls_lossless", "MR_small_jp2klossless", "MR_small_padded"):
             with self.subTest(name=name):
                 fields, voxels, _ = convert(VARIANTS / f"{name}.dcm", name)
                 mr.check(self, fields, voxels)
         frames = pydicom.dcmread(VARIANTS / "emri_small.dcm").pixel_array
-        for name in ("emri_small", "emri_small_big_endian", "emri_small_RLE", "emri_small_jpeg_ls_lossless"):
+        for name in ("emri_small", "emri_small_big_endian", "emri_small_RLE", "emri_small_jpeg_ls_lossless",
+                     "emri_small_jpeg_2k_lossless"):
             with self.subTest(name=name):
                 fields, voxels, _ = convert(VARIANTS / f"{name}.dcm", name)
                 np.testing.assert_array_equal(voxels, frames)
@@ -230,10 +250,14 @@ class DicomCompressed(unittest.TestCase):
         ct = self.reference(VARIANTS / "CT_small.dcm")
         fields, voxels, err = convert(VARIANTS / "CT_small.dcm", "CT_small")
         ct.check(self, fields, voxels)
-        for name in ("JPEG-LL", "JPGExtended"):  # pydicom has no JPEG decoder here: shape and content
+        for name in ("JPEG-LL", "JPGExtended", "JPEG-lossy"):  # no JPEG decoder for pydicom here
             _, voxels, _ = convert(VARIANTS / f"{name}.dcm", name)
             self.assertEqual(voxels.shape, (1, 1024, 256))
             self.assertGreater(voxels.std(), 1.0)
+        # pydicom decodes JPEG 2000 through Pillow: the NM image, lossy.
+        nm = pydicom.dcmread(VARIANTS / "JPEG2000.dcm").pixel_array
+        _, voxels, _ = convert(VARIANTS / "JPEG2000.dcm", "JPEG2000")
+        np.testing.assert_array_equal(voxels[0], nm)
 
 
 def small_series(count=12, step=2.0, name="series"):
@@ -408,9 +432,7 @@ class DicomRobustness(unittest.TestCase):
             "badVR.dcm": "Number of Frames '1A' is not a number",
             "rtplan_truncated.dcm": "not readable as DICOM",
             "no_meta.dcm": "not readable as DICOM",
-            "J2K_pixelrep_mismatch.dcm": "JPEG 2000",
-            "JPEG2000-embedded-sequence-delimiter.dcm": "JPEG 2000",
-            "explicit_VR-UN.dcm": "JPEG 2000",
+            "JPEG2000-embedded-sequence-delimiter.dcm": "corrupt JPEG 2000 header",
             "UN_sequence.dcm": "no DICOM images found",
             "meta_missing_tsyntax.dcm": "no DICOM images found",
             "emri_small_jpeg_2k_lossless_too_short.dcm": "Sequence Delimitation Item missing",
@@ -424,8 +446,15 @@ class DicomRobustness(unittest.TestCase):
                 if path.name in words:
                     self.assertEqual(code, 1)
                     self.assertIn(words[path.name], err)
-        # The one sound image among them (JPEG lossless CT with a broken sequence) reads.
+        # The sound images among them read: a JPEG lossless CT with a broken
+        # sequence, a JPEG 2000 CT whose elements are VR UN, and one whose
+        # codestream is unsigned where Pixel Representation says signed (read
+        # as pydicom reads it).
         self.assertEqual(info_dims(MALFORMED / "bad_sequence.dcm"), [512, 512, 1])
+        for name in ("explicit_VR-UN", "J2K_pixelrep_mismatch"):
+            fields, voxels, _ = convert(MALFORMED / f"{name}.dcm", name)
+            expected = pydicom.dcmread(MALFORMED / f"{name}.dcm").pixel_array
+            np.testing.assert_array_equal(voxels[0], expected, name)
 
     def test_listing_a_malformed_folder_names_every_unreadable_file(self):
         listing = json.loads(arbor("dicom", "ls", MALFORMED, "--json")[1])
