@@ -1,8 +1,10 @@
 #include "folder_scan.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 namespace arbor::dicom {
@@ -104,6 +106,31 @@ FolderScan scan_dicom(const fs::path &path, const ScanProgress &progress)
     if (progress)
         progress(1.0);
     return scan;
+}
+
+std::size_t series_images_beside(const fs::path &file, const std::string &series_uid)
+{
+    std::set<std::string> instances;
+    std::error_code ec;
+    for (const fs::directory_entry &e : fs::directory_iterator(file.parent_path(), ec)) {
+        if (!e.is_regular_file(ec) || !looks_like_dicom(e.path()))
+            continue;
+        try {
+            const ImageRecord r = read_image_record(e.path());
+            if (r.series_uid != series_uid || !r.is_image())
+                continue;
+            // Copies of one image (other encodings, re-sent instances) share
+            // a position; without one, the instance UID tells them apart.
+            const auto &p = r.frames.front().geometry.position;
+            char key[96];
+            if (p)
+                std::snprintf(key, sizeof key, "%.2f %.2f %.2f", (*p)[0], (*p)[1], (*p)[2]);
+            instances.insert(p ? std::string(key) : r.sop_instance_uid.empty() ? e.path().string() : r.sop_instance_uid);
+        } catch (const std::runtime_error &) {
+            // Unreadable neighbours do not matter here.
+        }
+    }
+    return instances.size();
 }
 
 const Series &select_series(const FolderScan &scan, const std::string &selector)

@@ -41,6 +41,11 @@ using ScanProgress = std::function<void(double)>;
 // folders) or a single file.  Throws only when `path` does not exist.
 FolderScan scan_dicom(const std::filesystem::path &path, const ScanProgress &progress = {});
 
+// How many distinct images of series `series_uid` (by position, else SOP
+// Instance UID) lie in the folder of `file`, `file` included (the folder
+// only, not below it).
+std::size_t series_images_beside(const std::filesystem::path &file, const std::string &series_uid);
+
 // The series a selector names: its Series Instance UID, or its 1-based row
 // number in the scan's order.  An empty selector picks the only series with
 // images.  Throws with the choices listed when there is no unique match.

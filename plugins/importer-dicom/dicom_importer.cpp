@@ -119,10 +119,13 @@ public:
         try {
             scan_ = dicom::scan_dicom(path, [&](double f) { task.progress(f, "scanning DICOM files"); });
             std::error_code ec;
-            if (fs::is_directory(path, ec))
+            const bool folder = fs::is_directory(path, ec);
+            if (folder)
                 report_skipped();
             const dicom::Series &series = dicom::select_series(*scan_, params().text("series"));
             plan_.emplace(series, policy);
+            if (!folder)
+                report_siblings(path, series);
         } catch (const sdk::Error &) {
             throw;
         } catch (const std::runtime_error &e) {
@@ -180,6 +183,18 @@ private:
         if (bad.size() > 5)
             text += "\n  ... (`arbor dicom ls` lists them all)";
         log(ARBOR_LOG_WARNING, text);
+    }
+
+    // One file of a multi-file series reads as that slice alone: say so.
+    void report_siblings(const std::string &path, const dicom::Series &series) const
+    {
+        if (series.uid.empty() || series.frame_count() > 1)
+            return;
+        const std::size_t beside = dicom::series_images_beside(path, series.uid);
+        if (beside > 1)
+            log(ARBOR_LOG_WARNING, fs::path(path).filename().string() + " is 1 of " + std::to_string(beside) +
+                                       " images of its series in this folder; only it is read (give the "
+                                       "folder to read the whole series)");
     }
 
     std::optional<dicom::FolderScan> scan_;

@@ -139,6 +139,12 @@ class DicomSeries(unittest.TestCase):
         self.assertIn("irregular (106 gaps of 1.5 mm, 1 of 1 mm)", err)
         self.assertIn("resampled to 108 slices", err)
 
+    def test_one_file_of_a_series_reads_alone_and_says_so(self):
+        first = sorted(MR_TUMOR.glob("*.dcm"))[0]
+        code, out, err = arbor("info", first, "--json")
+        self.assertEqual(json.loads(out)["dims"], [512, 512, 1])
+        self.assertIn("is 1 of 120 images of its series in this folder", err)
+
     def test_head_ct_refuses_irregular_gaps_when_asked(self):
         code, _, err = arbor("info", CT_HEAD, "--dicom.irregular-slices", "refuse", check=False)
         self.assertEqual(code, 1)
