@@ -173,7 +173,8 @@ void add_dicom_command(CLI::App &app, Context &context)
             j["not_dicom"] = nlohmann::json::array();
             for (const auto &p : scan.not_dicom)
                 j["not_dicom"].push_back(p.string());
-            std::cout << j.dump(2) << "\n";
+            // File names need not be UTF-8: replace what JSON cannot hold.
+            std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
         } else {
             print_table(scan, rows);
         }

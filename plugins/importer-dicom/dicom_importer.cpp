@@ -8,10 +8,10 @@
 #include "dicom/image_record.hpp"
 #include "dicom/series_volume.hpp"
 
+#include <strings.h>
+
 #include <cstring>
 #include <filesystem>
-#include <strings.h>
-#include <fstream>
 #include <memory>
 #include <optional>
 
