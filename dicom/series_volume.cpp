@@ -63,15 +63,46 @@ std::array<int64_t, 2> type_range(arbor_voxel_type t)
 }
 
 template <class T>
-void store_slice(const std::vector<double> &values, T *out, double lo, double hi)
+T output_value(double v, double lo, double hi)
 {
-    for (std::size_t i = 0; i < values.size(); ++i) {
-        const double v = values[i];
-        if constexpr (std::is_floating_point_v<T>)
-            out[i] = static_cast<T>(std::isnan(v) ? 0.0 : v);
-        else
-            out[i] = static_cast<T>(std::isnan(v) ? 0.0 : std::clamp(std::round(v), lo, hi));
+    if constexpr (std::is_floating_point_v<T>) {
+        return static_cast<T>(v);
+    } else {
+        const double r = v >= 0 ? v + 0.5 : v - 0.5; // half away from zero
+        return static_cast<T>(static_cast<int64_t>(r < lo ? lo : (r > hi ? hi : r)));
     }
+}
+
+// Writes one slice of values in output units: integers rounded and clamped
+// to the type.  A NaN (no measured value) is written as 0 and marked in
+// `marks`, which is null when no NaN can occur; the lowest measured value is
+// tracked.  Returns the NaNs.
+template <class T>
+std::size_t store_slice(const double *values, std::size_t n, T *out, double lo, double hi, uint8_t *marks,
+                        double &lowest)
+{
+    double low = lowest;
+    std::size_t unmeasured = 0;
+    if (!marks) {
+        for (std::size_t i = 0; i < n; ++i) {
+            low = std::min(low, values[i]);
+            out[i] = output_value<T>(values[i], lo, hi);
+        }
+    } else {
+        for (std::size_t i = 0; i < n; ++i) {
+            const double v = values[i];
+            if (std::isnan(v)) {
+                marks[i] = 1;
+                ++unmeasured;
+                out[i] = T(0);
+            } else {
+                low = std::min(low, v);
+                out[i] = output_value<T>(v, lo, hi);
+            }
+        }
+    }
+    lowest = low;
+    return unmeasured;
 }
 
 template <class T>
@@ -303,7 +334,6 @@ public:
                 return slot.values;
         Slot &slot = slots_[next_++ % 2];
         slot.index = index;
-        slot.values.resize(plane_);
         decode(index, slot.values);
         return slot.values;
     }
@@ -330,8 +360,11 @@ private:
     {
         const FrameRef &ref = v_.frames_[index];
         const ImageRecord &r = *ref.image;
-        raw_.resize(plane_);
-        image(&r).stored_values(ref.frame, raw_.data());
+        // Without tilt the frame is decoded straight into its slot.
+        const bool tilted = !v_.stack_.frame_offsets.empty();
+        std::vector<double> &values = tilted ? raw_ : out;
+        values.resize(plane_);
+        image(&r).stored_values(ref.frame, values.data());
         const RescaleMapping &m = r.frames[ref.frame].mapping;
         double pad_lo = 1, pad_hi = 0;
         if (r.padding_value) {
@@ -343,26 +376,25 @@ private:
         }
         const double c = r.is_signed ? -1.0 : std::ldexp(1.0, static_cast<int>(r.bits_stored)) - 1;
         for (std::size_t i = 0; i < plane_; ++i) {
-            const double s = raw_[i];
+            const double s = values[i];
             if (s >= pad_lo && s <= pad_hi) {
-                raw_[i] = kNaN;
+                values[i] = kNaN;
                 ++padded;
             } else if (v_.physical_) {
-                raw_[i] = (v_.invert_ ? -1.0 : 1.0) * (s * m.slope + m.intercept);
+                values[i] = (v_.invert_ ? -1.0 : 1.0) * (s * m.slope + m.intercept);
             } else {
-                raw_[i] = v_.invert_ ? c - s : s;
+                values[i] = v_.invert_ ? c - s : s;
             }
         }
-        shift(index, out);
+        if (tilted) {
+            out.resize(plane_);
+            shift(index, out);
+        }
     }
 
     // Undo a gantry tilt: sample the frame at its in-plane offset.
     void shift(std::size_t index, std::vector<double> &out) const
     {
-        if (v_.stack_.frame_offsets.empty()) {
-            out = raw_;
-            return;
-        }
         const auto nx = static_cast<std::size_t>(v_.layout_.dims[0]);
         const auto ny = static_cast<std::size_t>(v_.layout_.dims[1]);
         const double dx = v_.stack_.frame_offsets[index][0] / v_.layout_.spacing[0];
@@ -404,8 +436,13 @@ std::vector<std::string> SeriesVolume::read(void *voxels, const ScanProgress &pr
     FrameReader reader(*this);
     const auto plane = static_cast<std::size_t>(layout_.dims[0] * layout_.dims[1]);
     const std::size_t slices = stack_.slices.size();
-    std::vector<uint8_t> marks; // voxels with no real value (padding, outside a tilted scan)
-    std::vector<double> values(plane);
+    // Voxels with no measured value (padding, outside a tilted scan): only
+    // possible when a frame declares padding or slices are shifted.
+    bool may_lack_values = !stack_.frame_offsets.empty();
+    for (const ImageRecord *r : images_)
+        may_lack_values = may_lack_values || r->padding_value.has_value();
+    std::vector<uint8_t> marks(may_lack_values ? plane * slices : 0, 0);
+    std::vector<double> blend; // allocated at the first interpolated slice
     double lowest = std::numeric_limits<double>::infinity();
     const auto range = type_range(layout_.type);
     std::size_t unfilled = 0;
@@ -413,26 +450,20 @@ std::vector<std::string> SeriesVolume::read(void *voxels, const ScanProgress &pr
         if (progress)
             progress(static_cast<double>(k) / static_cast<double>(slices));
         const SliceSource &src = stack_.slices[k];
-        values = reader.frame(src.a);
+        const double *values = reader.frame(src.a).data();
         if (src.t > 0) {
+            blend.assign(values, values + plane);
             const std::vector<double> &b = reader.frame(src.b);
             for (std::size_t i = 0; i < plane; ++i)
-                values[i] = (1 - src.t) * values[i] + src.t * b[i];
+                blend[i] = (1 - src.t) * blend[i] + src.t * b[i];
+            values = blend.data();
         }
-        for (std::size_t i = 0; i < plane; ++i) {
-            if (std::isnan(values[i])) {
-                if (marks.empty())
-                    marks.resize(plane * slices, 0);
-                marks[k * plane + i] = 1;
-                ++unfilled;
-            } else {
-                lowest = std::min(lowest, values[i]);
-            }
-        }
+        uint8_t *slice_marks = may_lack_values ? marks.data() + k * plane : nullptr;
         with_voxel_type(layout_.type, [&](auto *tag) {
             using T = std::remove_pointer_t<decltype(tag)>;
-            store_slice(values, static_cast<T *>(voxels) + k * plane, static_cast<double>(range[0]),
-                        static_cast<double>(range[1]));
+            unfilled += store_slice(values, plane, static_cast<T *>(voxels) + k * plane,
+                                    static_cast<double>(range[0]), static_cast<double>(range[1]),
+                                    slice_marks, lowest);
         });
     }
     std::vector<std::string> notes;
