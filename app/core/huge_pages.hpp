@@ -1,4 +1,5 @@
-// huge_pages.hpp - memory for the topology core's large arrays.
+// huge_pages.hpp - memory for large arrays: voxels and the topology core's
+// per-vertex, per-node and per-arc arrays.
 //
 // Arrays of hundreds of megabytes that are read at random should come in huge
 // pages: one page fault and one TLB entry per 2 MiB instead of per 4 KiB.
@@ -14,7 +15,7 @@
 
 #include <sys/mman.h>
 
-namespace arbor::topology {
+namespace arbor {
 
 // Blocks of at least this many bytes are mapped directly and advised as huge
 // pages.  Page faults are expensive on virtual machines: even a 1 MiB scratch
@@ -76,4 +77,4 @@ struct HugePageAllocator {
 template <class T>
 using HugeVector = std::vector<T, HugePageAllocator<T>>;
 
-} // namespace arbor::topology
+} // namespace arbor

@@ -1,5 +1,6 @@
 #include "volume.hpp"
 
+#include "huge_pages.hpp"
 #include "volume_header.hpp"
 #include "voxel_type.hpp"
 
@@ -29,7 +30,10 @@ std::array<double, 3> Geometry::position_of(int64_t vertex) const
 
 void Volume::Free::operator()(std::byte *p) const
 {
-    std::free(p);
+    if (bytes >= kHugePageThreshold)
+        free_large(p, bytes);
+    else
+        std::free(p);
 }
 
 Volume Volume::allocate(arbor_voxel_type type, const Geometry &geometry, ValueMapping mapping,
@@ -57,11 +61,20 @@ Volume Volume::allocate(arbor_voxel_type type, const Geometry &geometry, ValueMa
     v.geometry_ = geometry;
     v.mapping_ = std::move(mapping);
     const uint64_t bytes = v.byte_size();
-    const uint64_t rounded = (bytes + 63) / 64 * 64;
-    void *p = std::aligned_alloc(64, rounded);
+    // Large volumes in huge pages, faulted in at once: importers fill
+    // hundreds of megabytes, and page faults are the largest fixed cost of
+    // that on virtual machines.  Small ones 64-byte aligned on the heap.
+    std::size_t rounded = static_cast<std::size_t>((bytes + 63) / 64 * 64);
+    void *p = nullptr;
+    if (rounded >= kHugePageThreshold) {
+        rounded = mapped_bytes(rounded);
+        p = allocate_large(rounded);
+    } else {
+        p = std::aligned_alloc(64, rounded);
+    }
     if (!p)
         throw std::bad_alloc();
-    v.storage_.reset(static_cast<std::byte *>(p));
+    v.storage_ = std::unique_ptr<std::byte[], Free>(static_cast<std::byte *>(p), Free(rounded));
     return v;
 }
 

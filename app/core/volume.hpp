@@ -71,8 +71,12 @@ public:
     arbor_volume view() const;
 
 private:
+    // Knows how the block was allocated (core/huge_pages.hpp) by its size.
     struct Free {
+        Free() noexcept : bytes(0) {}
+        explicit Free(std::size_t size) noexcept : bytes(size) {}
         void operator()(std::byte *p) const;
+        std::size_t bytes;
     };
     arbor_voxel_type type_ = ARBOR_VOXEL_UNKNOWN;
     Geometry geometry_;

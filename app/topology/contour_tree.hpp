@@ -9,7 +9,7 @@
 // accumulated from this augmentation instead of re-flooding the volume.
 #pragma once
 
-#include "huge_pages.hpp"
+#include "../core/huge_pages.hpp"
 #include "merge_tree.hpp"
 #include "uninitialized_buffer.hpp"
 #include "vertex_order.hpp"

@@ -9,7 +9,7 @@
 #pragma once
 
 #include "contour_tree.hpp"
-#include "huge_pages.hpp"
+#include "../core/huge_pages.hpp"
 
 #include <cstdint>
 

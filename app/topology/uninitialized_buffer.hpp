@@ -2,10 +2,10 @@
 // elements for the topology core's one-element-per-voxel arrays.
 //
 // Nothing is written before use (std::vector would zero every page first),
-// and large buffers come in huge pages (huge_pages.hpp).
+// and large buffers come in huge pages (core/huge_pages.hpp).
 #pragma once
 
-#include "huge_pages.hpp"
+#include "../core/huge_pages.hpp"
 
 #include <cstddef>
 #include <type_traits>
