@@ -3,34 +3,21 @@
 // shared DICOM series and WG04 files in several transfer syntaxes, against
 // pydicom reading and stacking the same files (the anchor; its numpy
 // stacking is the fast part).  Prints a table; not a pass/fail test.
+#include "fastest_run.hpp"
 #include "test_paths.hpp"
 
 #include "host/host_services.hpp"
 #include "host/plugin_registry.hpp"
 #include "host/volume_import.hpp"
 
-#include <algorithm>
 #include <array>
-#include <chrono>
 #include <cstdio>
-#include <functional>
 #include <memory>
 #include <string>
 
 using namespace arbor;
 
 namespace {
-
-double fastest(const std::function<void()> &f, int repeat)
-{
-    double best = 1e30;
-    for (int r = 0; r < repeat; ++r) {
-        const auto t0 = std::chrono::steady_clock::now();
-        f();
-        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    }
-    return best;
-}
 
 // pydicom: read every file, sort by position along the normal, stack the
 // pixel arrays; fastest of `repeat`.  Returns a negative number when pydicom
@@ -82,7 +69,7 @@ int main()
         PluginInstance importer = registry.create("org.arbor.importer.dicom");
         const auto &table = importer.interface<arbor_importer_v1>(ARBOR_INTERFACE_IMPORTER);
         Volume volume;
-        const double header = fastest(
+        const double header = bench::fastest_seconds(
             [&] {
                 arbor_volume h{};
                 h.struct_size = sizeof h;
@@ -91,7 +78,7 @@ int main()
             },
             repeat);
         const double total =
-            fastest([&] { volume = import_volume(importer, path, nullptr, uint64_t{1} << 33); }, repeat);
+            bench::fastest_seconds([&] { volume = import_volume(importer, path, nullptr, uint64_t{1} << 33); }, repeat);
         const auto &d = volume.geometry().dims;
         const int64_t voxels = d[0] * d[1] * d[2];
         const double mb = static_cast<double>(voxels * arbor_voxel_size(volume.type())) / 1e6;

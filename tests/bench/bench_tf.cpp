@@ -5,31 +5,18 @@
 // inclusion depictor first.  Prints a table; not a pass/fail test.  The goal
 // (issue 5): well under a millisecond for 100 branches.
 #include "branch_tree_builder.hpp"
+#include "fastest_run.hpp"
 #include "test_paths.hpp"
 
 #include "host/plugin_registry.hpp"
 #include "host/tf_generation.hpp"
 
-#include <algorithm>
-#include <chrono>
-#include <functional>
 #include <cstdio>
 #include <string>
 
 using namespace arbor;
 
 namespace {
-
-double seconds_of(const std::function<void()> &f, int repeat)
-{
-    double best = 1e30;
-    for (int r = 0; r < repeat; ++r) {
-        const auto t0 = std::chrono::steady_clock::now();
-        f();
-        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    }
-    return best;
-}
 
 void set_number(PluginInstance &p, const char *id, double x)
 {
@@ -62,13 +49,13 @@ int main()
         PluginInstance generator = registry.create("org.arbor.tf.residue-flow");
         generate_transfer_functions(generator, request, out); // colours into the cache
         double q = 10;
-        const double warm = seconds_of(
+        const double warm = bench::fastest_seconds(
             [&] {
                 set_number(generator, "flow-rate", q += 1);
                 generate_transfer_functions(generator, request, out);
             },
             20);
-        const double cold = seconds_of(
+        const double cold = bench::fastest_seconds(
             [&] {
                 PluginInstance fresh = registry.create("org.arbor.tf.residue-flow");
                 generate_transfer_functions(fresh, request, out);
@@ -80,7 +67,7 @@ int main()
         dr.struct_size = sizeof dr;
         dr.selected_branch = -1;
         dr.tree = &tree;
-        const double with_depiction = seconds_of(
+        const double with_depiction = bench::fastest_seconds(
             [&] {
                 set_number(generator, "flow-rate", q += 1);
                 depict(inclusion, dr, depiction);
