@@ -3,6 +3,7 @@
 #include "pixel_frames.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -74,12 +75,12 @@ T output_value(double v, double lo, double hi)
 }
 
 // Writes one slice of values in output units: integers rounded and clamped
-// to the type.  A NaN (no measured value) is written as 0 and marked in
-// `marks`, which is null when no NaN can occur; the lowest measured value is
-// tracked.  Returns the NaNs.
+// to the type.  A NaN (no measured value) is written as 0 and its voxel index
+// (`first` + i) set in the bit set `marks`, which is null when no NaN can
+// occur; the lowest measured value is tracked.  Returns the NaNs.
 template <class T>
-std::size_t store_slice(const double *values, std::size_t n, T *out, double lo, double hi, uint8_t *marks,
-                        double &lowest)
+std::size_t store_slice(const double *values, std::size_t n, T *out, double lo, double hi, uint64_t *marks,
+                        std::size_t first, double &lowest)
 {
     double low = lowest;
     std::size_t unmeasured = 0;
@@ -92,7 +93,7 @@ std::size_t store_slice(const double *values, std::size_t n, T *out, double lo, 
         for (std::size_t i = 0; i < n; ++i) {
             const double v = values[i];
             if (std::isnan(v)) {
-                marks[i] = 1;
+                marks[(first + i) >> 6] |= uint64_t{1} << ((first + i) & 63);
                 ++unmeasured;
                 out[i] = T(0);
             } else {
@@ -105,12 +106,13 @@ std::size_t store_slice(const double *values, std::size_t n, T *out, double lo, 
     return unmeasured;
 }
 
+// Sets the voxels whose bits are set in `marks` to `value`.
 template <class T>
-void fill_marked(T *voxels, const std::vector<uint8_t> &marks, double value)
+void fill_marked(T *voxels, const std::vector<uint64_t> &marks, double value)
 {
-    for (std::size_t i = 0; i < marks.size(); ++i)
-        if (marks[i])
-            voxels[i] = static_cast<T>(value);
+    for (std::size_t w = 0; w < marks.size(); ++w)
+        for (uint64_t bits = marks[w]; bits; bits &= bits - 1)
+            voxels[w * 64 + static_cast<std::size_t>(std::countr_zero(bits))] = static_cast<T>(value);
 }
 
 template <class F>
@@ -441,7 +443,7 @@ std::vector<std::string> SeriesVolume::read(void *voxels, const ScanProgress &pr
     bool may_lack_values = !stack_.frame_offsets.empty();
     for (const ImageRecord *r : images_)
         may_lack_values = may_lack_values || r->padding_value.has_value();
-    std::vector<uint8_t> marks(may_lack_values ? plane * slices : 0, 0);
+    std::vector<uint64_t> marks(may_lack_values ? (plane * slices + 63) / 64 : 0, 0); // one bit a voxel
     std::vector<double> blend; // allocated at the first interpolated slice
     double lowest = std::numeric_limits<double>::infinity();
     const auto range = type_range(layout_.type);
@@ -458,12 +460,12 @@ std::vector<std::string> SeriesVolume::read(void *voxels, const ScanProgress &pr
                 blend[i] = (1 - src.t) * blend[i] + src.t * b[i];
             values = blend.data();
         }
-        uint8_t *slice_marks = may_lack_values ? marks.data() + k * plane : nullptr;
+        uint64_t *marks_or_null = may_lack_values ? marks.data() : nullptr;
         with_voxel_type(layout_.type, [&](auto *tag) {
             using T = std::remove_pointer_t<decltype(tag)>;
             unfilled += store_slice(values, plane, static_cast<T *>(voxels) + k * plane,
                                     static_cast<double>(range[0]), static_cast<double>(range[1]),
-                                    slice_marks, lowest);
+                                    marks_or_null, k * plane, lowest);
         });
     }
     std::vector<std::string> notes;
