@@ -10,11 +10,16 @@ std::array<double, 3> voxel_ijk(const Geometry &g, uint32_t v)
 
 void write_tree_point(JsonStream &j, const topology::ContourTree &t, const Volume &vol, uint32_t node)
 {
-    const uint32_t v = t.node_vertex[node];
     j.raw("{");
     j.key("node");
     j.number(node);
     j.raw(",");
+    write_vertex_fields(j, vol, t.node_vertex[node]);
+    j.raw("}");
+}
+
+void write_vertex_fields(JsonStream &j, const Volume &vol, uint32_t v)
+{
     j.key("vertex");
     j.number(v);
     j.raw(",");
@@ -26,7 +31,23 @@ void write_tree_point(JsonStream &j, const topology::ContourTree &t, const Volum
     j.raw(",");
     j.key("value");
     j.number(vol.value(v));
-    j.raw("}");
+}
+
+void write_branch_ends_and_measures(JsonStream &j, const topology::ContourTree &t, const Volume &vol,
+                                    const topology::BranchDecomposition &d, uint32_t branch)
+{
+    const topology::Branch &br = d.branches[branch];
+    j.key("extremum");
+    write_tree_point(j, t, vol, br.extremum_node);
+    j.raw(",");
+    j.key("saddle");
+    write_tree_point(j, t, vol, br.saddle_node);
+    j.raw(",");
+    j.key("measures");
+    write_measures(j, br.measures);
+    j.raw(",");
+    j.key("relative_measures");
+    write_relative_measures(j, d, branch);
 }
 
 void write_measures(JsonStream &j, const std::array<double, topology::kMeasureCount> &m)

@@ -20,6 +20,12 @@ std::array<double, 3> voxel_ijk(const Geometry &g, uint32_t v);
 
 // {"node", "vertex", "ijk", "position_mm", "value"} of a contour-tree node.
 void write_tree_point(JsonStream &j, const topology::ContourTree &t, const Volume &vol, uint32_t node);
+// "vertex", "ijk", "position_mm", "value" of vertex v: fields, no braces.
+void write_vertex_fields(JsonStream &j, const Volume &vol, uint32_t v);
+// "extremum", "saddle", "measures", "relative_measures" of a branch: fields,
+// no braces.
+void write_branch_ends_and_measures(JsonStream &j, const topology::ContourTree &t, const Volume &vol,
+                                    const topology::BranchDecomposition &d, uint32_t branch);
 
 // {"persistence": ..., "volume": ...} keyed by the SDK's measure ids.
 void write_measures(JsonStream &j, const std::array<double, topology::kMeasureCount> &m);

@@ -64,7 +64,6 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
     j.key("nodes");
     j.raw("[\n");
     for (std::size_t x = 0; x < t.node_count(); ++x) {
-        const uint32_t v = t.node_vertex[x];
         j.raw(x ? ",\n{" : "{");
         j.key("id");
         j.number(static_cast<double>(x));
@@ -72,17 +71,7 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
         j.key("kind");
         j.string(topology::node_kind_name(t.node_kind[x]));
         j.raw(",");
-        j.key("vertex");
-        j.number(v);
-        j.raw(",");
-        j.key("ijk");
-        j.triple(voxel_ijk(vol.geometry(), v));
-        j.raw(",");
-        j.key("position_mm");
-        j.triple(vol.geometry().position_of(v));
-        j.raw(",");
-        j.key("value");
-        j.number(vol.value(v));
+        write_vertex_fields(j, vol, t.node_vertex[x]);
         j.raw(",");
         j.key("branch");
         j.number(d.node_branch[x]);
@@ -144,17 +133,7 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
             j.number(c);
         }
         j.raw("],");
-        j.key("extremum");
-        write_tree_point(j, t, vol, br.extremum_node);
-        j.raw(",");
-        j.key("saddle");
-        write_tree_point(j, t, vol, br.saddle_node);
-        j.raw(",");
-        j.key("measures");
-        write_measures(j, br.measures);
-        j.raw(",");
-        j.key("relative_measures");
-        write_relative_measures(j, d, static_cast<uint32_t>(b));
+        write_branch_ends_and_measures(j, t, vol, d, static_cast<uint32_t>(b));
         j.raw(",");
         j.key("importance");
         j.number(std::isinf(br.importance) ? 1.0 : br.importance);

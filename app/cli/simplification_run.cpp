@@ -153,17 +153,7 @@ void write_kept_branches(JsonStream &j, const topology::ContourTree &tree, const
         j.key("importance");
         j.number(std::isinf(br.importance) ? 1.0 : br.importance);
         j.raw(",");
-        j.key("extremum");
-        write_tree_point(j, tree, volume, br.extremum_node);
-        j.raw(",");
-        j.key("saddle");
-        write_tree_point(j, tree, volume, br.saddle_node);
-        j.raw(",");
-        j.key("measures");
-        write_measures(j, br.measures);
-        j.raw(",");
-        j.key("relative_measures");
-        write_relative_measures(j, d, b);
+        write_branch_ends_and_measures(j, tree, volume, d, b);
         j.raw("}");
     }
     j.raw("\n]");
