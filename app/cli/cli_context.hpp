@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <stop_token>
 #include <string>
 
 namespace arbor::cli {
@@ -21,6 +22,8 @@ struct Context {
     PluginRegistry registry;
     TerminalProgress progress;
     uint64_t max_volume_bytes = 0;
+    // Ctrl-C asks the command's work to stop through this source.
+    std::stop_source stop;
     // The run function of each subcommand, by subcommand name.
     std::map<std::string, std::function<int()>> commands;
 

@@ -100,7 +100,7 @@ std::vector<PriorityRow> priority_rows(const std::vector<ComparedSimplifier> &ru
 Volume load_truth(const std::string &path, Context &context)
 {
     PluginInstance importer = context.registry.create(choose_importer(context.registry, path));
-    return import_volume(importer, path, &context.progress, context.max_volume_bytes);
+    return import_volume(importer, path, &context.progress, context.max_volume_bytes, context.stop.get_token());
 }
 
 } // namespace

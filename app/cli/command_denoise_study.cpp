@@ -144,7 +144,7 @@ void add_denoise_study_command(CLI::App &app, Context &context)
                 char text[64];
                 std::snprintf(text, sizeof text, "%.17g", p.strength);
                 filter.set_param(a->param, parse_param_value(*d, text).value);
-                filtered = run_filter(filter, in.volume, &context.progress, context.max_volume_bytes);
+                filtered = run_filter(filter, in.volume, &context.progress, context.max_volume_bytes, context.stop.get_token());
             }
             const topology::TopologyResult topo = run_contour_tree(identity ? in.volume : filtered, context);
             p.seconds = watch.lap();

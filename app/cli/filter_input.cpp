@@ -37,7 +37,7 @@ PluginInstance *FilterInput::apply(LoadedVolume &in, Context &context)
             }
             filter.set_param(key, parse_param_value(*d, pair.substr(eq + 1)).value);
         }
-    in.volume = run_filter(filter, in.volume, &context.progress, context.max_volume_bytes);
+    in.volume = run_filter(filter, in.volume, &context.progress, context.max_volume_bytes, context.stop.get_token());
     in.source += " | " + spec_;
     return &filter;
 }

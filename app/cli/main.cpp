@@ -5,30 +5,20 @@
 // 2 the command line was wrong, 130 cancelled with Ctrl-C.
 #include "cli_context.hpp"
 #include "commands.hpp"
+#include "interrupt_watch.hpp"
 
+#include "core/cancelled.hpp"
 #include "core/volume_header.hpp"
 
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <unistd.h>
-
-namespace {
-
-extern "C" void on_interrupt(int)
-{
-    // First Ctrl-C: ask running plugin calls to stop.  Second: leave now.
-    if (arbor::cancellation_requested())
-        _exit(130);
-    arbor::request_cancellation();
-}
-
-} // namespace
 
 int main(int argc, char **argv)
 {
     using namespace arbor;
-    std::signal(SIGINT, on_interrupt);
+    cli::Context context;
+    // First Ctrl-C: stop the command's work.  Second: leave now.
+    const cli::InterruptWatch interrupt([&context] { context.stop.request_stop(); });
 
     // Verbosity must be known before plugins load (they log while loading).
     for (int i = 1; i < argc; ++i) {
@@ -39,7 +29,6 @@ int main(int argc, char **argv)
             set_log_level(ARBOR_LOG_ERROR);
     }
 
-    cli::Context context;
     context.executable = cli::executable_path(argv[0]);
     context.max_volume_bytes = default_max_volume_bytes();
     context.registry.load_directories(PluginRegistry::default_search_path(context.executable));
@@ -91,8 +80,11 @@ int main(int argc, char **argv)
     }
     try {
         return context.commands.at(name)();
+    } catch (const Cancelled &) {
+        log_message(ARBOR_LOG_ERROR, "", "cancelled");
+        return 130;
     } catch (const std::exception &e) {
-        if (cancellation_requested()) {
+        if (interrupt.interrupted()) {
             log_message(ARBOR_LOG_ERROR, "", "cancelled");
             return 130;
         }

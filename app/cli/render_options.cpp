@@ -48,7 +48,7 @@ RenderedImage RenderOptions::render(const Volume &volume, const std::vector<uint
         request.background[c] = c < background_.size() ? background_[c] : 1.0f;
     request.volume_revision = 1;
     request.labels_revision = 1;
-    return render_image(*renderer_, request, width_, height_, &context.progress);
+    return render_image(*renderer_, request, width_, height_, &context.progress, context.stop.get_token());
 }
 
 } // namespace arbor::cli

@@ -2,6 +2,7 @@
 
 #include "branch_json.hpp"
 
+#include "core/cancelled.hpp"
 #include "host/simplifier_importance.hpp"
 
 #include <chrono>
@@ -78,8 +79,7 @@ SimplifiedTree simplify_tree(const topology::ContourTree &tree, const Volume &vo
                                         &volume.geometry()};
         const std::string stage = "branches by " + out.id;
         out.branches = topology::decompose_branches(tree, field, importance, [&](double f) {
-            if (cancellation_requested())
-                throw std::runtime_error("cancelled");
+            throw_if_stopped(context.stop.get_token());
             context.progress.report(stage, f);
         });
     }

@@ -10,11 +10,7 @@ namespace {
 
 topology::StageProgressFn terminal_stages(Context &context)
 {
-    return [&context](const char *stage, double fraction) {
-        if (cancellation_requested())
-            throw std::runtime_error("cancelled");
-        context.progress.report(stage, fraction);
-    };
+    return [&context](const char *stage, double fraction) { context.progress.report(stage, fraction); };
 }
 
 } // namespace
@@ -23,13 +19,13 @@ topology::TopologyResult run_topology(const Volume &volume, const topology::Impo
                                       Context &context)
 {
     Task task(&context.progress); // owns the progress display for the run
-    return topology::compute_topology(volume, importance, terminal_stages(context));
+    return topology::compute_topology(volume, importance, terminal_stages(context), context.stop.get_token());
 }
 
 topology::TopologyResult run_contour_tree(const Volume &volume, Context &context)
 {
     Task task(&context.progress);
-    return topology::compute_contour_tree(volume, terminal_stages(context));
+    return topology::compute_contour_tree(volume, terminal_stages(context), context.stop.get_token());
 }
 
 void print_timings(const topology::TopologyResult &result, const Volume &volume)

@@ -75,7 +75,7 @@ TransferFunctionResult TransferFunctionStage::run(const BranchTreeRecord &tree, 
     r.request.tree = &tree.record();
     r.depiction = std::make_unique<DepictionRecord>(tree.size());
     if (r.depictor)
-        depict(*r.depictor, r.request, *r.depiction, &context.progress);
+        depict(*r.depictor, r.request, *r.depiction, &context.progress, context.stop.get_token());
 
     const arbor_volume view = volume.view();
     arbor_tf_request tf{};
@@ -88,7 +88,7 @@ TransferFunctionResult TransferFunctionStage::run(const BranchTreeRecord &tree, 
     const auto &sp = volume.geometry().spacing;
     tf.min_spacing = std::min({sp[0], sp[1], sp[2]});
     r.functions = std::make_unique<TransferFunctions>(tree.size(), lut_size_, tf.min_spacing);
-    generate_transfer_functions(*r.generator, tf, *r.functions, &context.progress);
+    generate_transfer_functions(*r.generator, tf, *r.functions, &context.progress, context.stop.get_token());
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return r;
 }

@@ -75,7 +75,7 @@ LoadedVolume VolumeInput::load()
         importer->set_param("series", parse_param_value(*d, series_).value);
     }
     options_.apply(*importer);
-    out.volume = import_volume(*importer, path_, &context_->progress, context_->max_volume_bytes);
+    out.volume = import_volume(*importer, path_, &context_->progress, context_->max_volume_bytes, context_->stop.get_token());
     out.source = path_;
     out.importer_id = id;
     out.importer_version = importer->descriptor().version;

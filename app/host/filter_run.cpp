@@ -3,7 +3,7 @@
 namespace arbor {
 
 Volume run_filter(PluginInstance &filter, const Volume &input, ProgressSink *progress,
-                  uint64_t max_bytes)
+                  uint64_t max_bytes, std::stop_token stop)
 {
     const auto &table = filter.interface<arbor_filter_v1>(ARBOR_INTERFACE_FILTER);
     const arbor_volume in = input.view();
@@ -11,7 +11,7 @@ Volume run_filter(PluginInstance &filter, const Volume &input, ProgressSink *pro
     filter.check(table.output_type(filter.get(), &in, &out_type), "choosing the output voxel type");
     Volume output = Volume::allocate(out_type, input.geometry(), input.mapping(), max_bytes);
     arbor_volume out = output.view();
-    Task task(progress);
+    Task task(progress, std::move(stop));
     filter.check(table.apply(filter.get(), &in, &out, task.get()), "filtering the volume");
     return output;
 }

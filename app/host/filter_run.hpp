@@ -11,6 +11,6 @@ namespace arbor {
 
 // Throws PluginError naming the filter and its reason.
 Volume run_filter(PluginInstance &filter, const Volume &input, ProgressSink *progress,
-                  uint64_t max_bytes);
+                  uint64_t max_bytes, std::stop_token stop = {});
 
 } // namespace arbor

@@ -9,7 +9,6 @@ namespace arbor {
 namespace {
 
 std::atomic<arbor_log_level> g_level{ARBOR_LOG_INFO};
-std::atomic<bool> g_cancel{false};
 std::mutex g_log_mutex;
 
 const char *level_name(arbor_log_level level)
@@ -25,7 +24,11 @@ const char *level_name(arbor_log_level level)
 void c_log(const arbor_host *host, arbor_log_level level, const char *message)
 {
     const auto *self = host ? static_cast<const HostIdentity *>(host->host_data) : nullptr;
-    log_message(level, self ? self->source() : "plugin", message ? message : "(null message)");
+    const std::string text = message ? message : "(null message)";
+    if (self)
+        self->log(level, text);
+    else
+        log_message(level, "plugin", text);
 }
 
 const void *c_get_extension(const arbor_host *, const char *)
@@ -68,22 +71,16 @@ HostIdentity::HostIdentity(std::string source) : source_(std::move(source))
     host_.get_extension = &c_get_extension;
 }
 
-void request_cancellation()
+void HostIdentity::log(arbor_log_level level, const std::string &message) const
 {
-    g_cancel = true;
+    if (LogSink *sink = sink_.load())
+        sink->write(level, source_, message);
+    else
+        log_message(level, source_, message);
 }
 
-bool cancellation_requested()
-{
-    return g_cancel;
-}
-
-void reset_cancellation()
-{
-    g_cancel = false;
-}
-
-Task::Task(ProgressSink *sink, uint64_t memory_limit) : sink_(sink), limit_(memory_limit)
+Task::Task(ProgressSink *sink, std::stop_token stop, uint64_t memory_limit)
+    : sink_(sink), stop_(std::move(stop)), limit_(memory_limit)
 {
     task_.struct_size = sizeof(arbor_task);
     task_.host_data = this;

@@ -1,5 +1,7 @@
 #include "plugin_instance.hpp"
 
+#include "core/cancelled.hpp"
+
 namespace arbor {
 
 PluginInstance::PluginInstance(arbor_plugin *plugin, std::unique_ptr<HostIdentity> host)
@@ -92,6 +94,8 @@ void PluginInstance::check(arbor_status status, const std::string &doing) const
 {
     if (status == ARBOR_OK)
         return;
+    if (status == ARBOR_ERROR_CANCELLED)
+        throw Cancelled();
     std::string reason = last_error();
     if (reason.empty())
         reason = arbor_status_name(status);

@@ -55,7 +55,11 @@ public:
     void set_param(const std::string &param_id, const arbor_param_value &value);
     arbor_param_value get_param(const std::string &param_id) const;
 
-    // Throws PluginError unless status is ARBOR_OK; `doing` says what the host
+    // Messages the plugin logs go to `sink` (nullptr: the host log).
+    void route_log(LogSink *sink) { host_->route_log(sink); }
+
+    // Throws Cancelled for ARBOR_ERROR_CANCELLED, PluginError unless status
+    // is ARBOR_OK; `doing` says what the host
     // asked for ("reading the header of scan.nrrd").
     void check(arbor_status status, const std::string &doing) const;
     std::string last_error() const;

@@ -6,7 +6,7 @@
 namespace arbor {
 
 RenderedImage render_image(PluginInstance &renderer, const arbor_render_request &request, uint32_t width,
-                           uint32_t height, ProgressSink *progress)
+                           uint32_t height, ProgressSink *progress, std::stop_token stop)
 {
     const auto &table = renderer.interface<arbor_renderer_v1>(ARBOR_INTERFACE_RENDERER);
     RenderedImage image;
@@ -21,7 +21,7 @@ RenderedImage render_image(PluginInstance &renderer, const arbor_render_request 
     out.row_stride = 4 * static_cast<int64_t>(width);
     out.rgba = image.rgba.data();
     out.depth = image.depth.data();
-    Task task(progress);
+    Task task(progress, std::move(stop));
     renderer.check(table.render(renderer.get(), &request, &out, task.get()), "rendering");
     for (float x : image.rgba)
         if (!(x >= 0.0f && x <= 1.0f))

@@ -21,7 +21,7 @@ struct RenderedImage {
 };
 
 RenderedImage render_image(PluginInstance &renderer, const arbor_render_request &request, uint32_t width,
-                           uint32_t height, ProgressSink *progress = nullptr);
+                           uint32_t height, ProgressSink *progress = nullptr, std::stop_token stop = {});
 
 // A camera orbiting the volume's centre.  Azimuth 0, elevation 0 looks at
 // the patient's face (from anterior, superior up); azimuth turns towards the

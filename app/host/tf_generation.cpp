@@ -49,10 +49,10 @@ void TransferFunctions::assign_points(std::vector<uint32_t> offsets, std::vector
 }
 
 void depict(PluginInstance &depictor, const arbor_depiction_request &request, DepictionRecord &out,
-            ProgressSink *progress)
+            ProgressSink *progress, std::stop_token stop)
 {
     const auto &table = depictor.interface<arbor_depictor_v1>(ARBOR_INTERFACE_DEPICTOR);
-    Task task(progress);
+    Task task(progress, stop);
     depictor.check(table.depict(depictor.get(), &request, &out.record(), task.get()), "depicting the branches");
     const arbor_depiction &d = out.record();
     for (uint32_t b = 0; b < d.branch_count; ++b) {
@@ -69,10 +69,10 @@ void depict(PluginInstance &depictor, const arbor_depiction_request &request, De
 }
 
 void generate_transfer_functions(PluginInstance &generator, const arbor_tf_request &request, TransferFunctions &out,
-                                 ProgressSink *progress)
+                                 ProgressSink *progress, std::stop_token stop)
 {
     const auto &table = generator.interface<arbor_tf_generator_v1>(ARBOR_INTERFACE_TF_GENERATOR);
-    Task task(progress);
+    Task task(progress, stop);
     arbor_tf_set &set = out.record();
     set.points = nullptr;
     generator.check(table.generate(generator.get(), &request, &set, task.get()), "generating transfer functions");

@@ -50,7 +50,7 @@ public:
 
 private:
     friend void generate_transfer_functions(PluginInstance &, const arbor_tf_request &, TransferFunctions &,
-                                            ProgressSink *);
+                                            ProgressSink *, std::stop_token);
     std::vector<double> domain_;
     std::vector<float> lut_;
     std::vector<uint32_t> offsets_;
@@ -59,9 +59,9 @@ private:
 };
 
 void depict(PluginInstance &depictor, const arbor_depiction_request &request, DepictionRecord &out,
-            ProgressSink *progress = nullptr);
+            ProgressSink *progress = nullptr, std::stop_token stop = {});
 
 void generate_transfer_functions(PluginInstance &generator, const arbor_tf_request &request, TransferFunctions &out,
-                                 ProgressSink *progress = nullptr);
+                                 ProgressSink *progress = nullptr, std::stop_token stop = {});
 
 } // namespace arbor

@@ -97,13 +97,13 @@ std::string choose_importer(const PluginRegistry &registry, const fs::path &path
 }
 
 Volume import_volume(PluginInstance &importer, const fs::path &path, ProgressSink *progress,
-                     uint64_t max_bytes)
+                     uint64_t max_bytes, std::stop_token stop)
 {
     const auto &table = importer.interface<arbor_importer_v1>(ARBOR_INTERFACE_IMPORTER);
     arbor_volume header{};
     header.struct_size = sizeof(header);
     {
-        Task task(progress);
+        Task task(progress, stop);
         importer.check(table.read_header(importer.get(), path.c_str(), task.get(), &header),
                        "reading the header of " + path.string());
     }
@@ -122,7 +122,7 @@ Volume import_volume(PluginInstance &importer, const fs::path &path, ProgressSin
     }
     arbor_volume target = volume.view();
     {
-        Task task(progress);
+        Task task(progress, stop);
         importer.check(table.read_voxels(importer.get(), path.c_str(), task.get(), &target),
                        "reading the voxels of " + path.string());
     }

@@ -33,6 +33,6 @@ std::string choose_importer(const PluginRegistry &registry, const std::filesyste
 // Reads the volume with an instance whose parameters are already set.
 // Throws PluginError / std::runtime_error with a message naming the file.
 Volume import_volume(PluginInstance &importer, const std::filesystem::path &path,
-                     ProgressSink *progress, uint64_t max_bytes);
+                     ProgressSink *progress, uint64_t max_bytes, std::stop_token stop = {});
 
 } // namespace arbor

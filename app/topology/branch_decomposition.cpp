@@ -116,13 +116,11 @@ public:
         out_.branches.push_back(root);
         {
             Components comp(tree_.node_count());
-            sweep(/*join=*/true, comp);
-            if (progress)
-                progress(0.4);
-            sweep(/*join=*/false, comp);
-            if (progress)
-                progress(0.7);
+            sweep(/*join=*/true, comp, progress, 0.0);
+            sweep(/*join=*/false, comp, progress, 0.35);
         }
+        if (progress)
+            progress(0.7);
         regions_.release_sums();
         assemble();
         return std::move(out_);
@@ -160,7 +158,9 @@ private:
     // the component's arc.  The most important continues (the global extremum
     // of the sweep always does; equal importance: the older extremum), the
     // others end at the node.
-    void sweep(bool join, Components &comp)
+    // Progress (and so cancellation) is polled every 64 Ki nodes, from
+    // `from` to `from` + 0.35.
+    void sweep(bool join, Components &comp, const ProgressFn &progress, double from)
     {
         const std::size_t nodes = tree_.node_count();
         const uint32_t forced = join ? gmin_ : gmax_;
@@ -168,6 +168,8 @@ private:
         std::vector<BranchMeasures> rows;
         std::vector<double> values;
         for (std::size_t step = 0; step < nodes; ++step) {
+            if (progress && (step & 0xffff) == 0)
+                progress(from + 0.35 * static_cast<double>(step) / static_cast<double>(nodes));
             const uint32_t x = static_cast<uint32_t>(join ? step : nodes - 1 - step);
             comp.make(x);
             arcs.clear();

@@ -1,5 +1,6 @@
 #include "topology_pipeline.hpp"
 
+#include "core/cancelled.hpp"
 #include "core/stopwatch.hpp"
 
 #include "grid_neighbors.hpp"
@@ -38,16 +39,20 @@ void refuse_non_finite(const Volume &volume)
 
 } // namespace
 
-TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn &progress)
+TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn &progress, std::stop_token stop)
 {
     if (volume.empty() || volume.voxel_count() == 0)
         throw std::invalid_argument("cannot compute the topology of an empty volume");
     refuse_non_finite(volume);
     const auto report = [&](const char *stage) -> ProgressFn {
-        if (!progress)
-            return {};
-        return [progress, stage](double f) { progress(stage, f); };
+        return [&progress, &stop, stage](double f) {
+            throw_if_stopped(stop);
+            if (progress)
+                progress(stage, f);
+        };
     };
+    // The split sweep's thread only polls: progress is the caller's thread's.
+    const ProgressFn poll = [&stop](double) { throw_if_stopped(stop); };
 
     TopologyResult result;
     Stopwatch total, watch;
@@ -75,7 +80,7 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
     std::exception_ptr split_error;
     std::thread split_thread([&] {
         try {
-            split = compute_split_tree(grid, volume.type(), volume.data(), order, {}, &split_scratch);
+            split = compute_split_tree(grid, volume.type(), volume.data(), order, poll, &split_scratch);
         } catch (...) {
             split_error = std::current_exception();
         }
@@ -101,14 +106,16 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
 }
 
 void decompose(TopologyResult &result, const Volume &volume, const ImportanceFn &importance,
-               const StageProgressFn &progress)
+               const StageProgressFn &progress, std::stop_token stop)
 {
     Stopwatch watch;
     const FieldView field{volume.type(), volume.data(), static_cast<uint32_t>(volume.voxel_count()),
                           &volume.geometry()};
-    ProgressFn report;
-    if (progress)
-        report = [&progress](double f) { progress("branches and measures", f); };
+    const ProgressFn report = [&progress, &stop](double f) {
+        throw_if_stopped(stop);
+        if (progress)
+            progress("branches and measures", f);
+    };
     result.branches = decompose_branches(result.tree, field, importance, report);
     const double seconds = watch.lap();
     result.timings.push_back({"branches+measures", seconds});
@@ -116,10 +123,10 @@ void decompose(TopologyResult &result, const Volume &volume, const ImportanceFn 
 }
 
 TopologyResult compute_topology(const Volume &volume, const ImportanceFn &importance,
-                                const StageProgressFn &progress)
+                                const StageProgressFn &progress, std::stop_token stop)
 {
-    TopologyResult result = compute_contour_tree(volume, progress);
-    decompose(result, volume, importance, progress);
+    TopologyResult result = compute_contour_tree(volume, progress, stop);
+    decompose(result, volume, importance, progress, stop);
     return result;
 }
 

@@ -10,6 +10,7 @@
 #include "core/volume.hpp"
 
 #include <functional>
+#include <stop_token>
 #include <string>
 #include <vector>
 
@@ -28,22 +29,25 @@ struct TopologyResult {
 };
 
 // stage ("sorting", "join tree"...) and fraction in [0, 1]; may throw to
-// cancel.
+// cancel.  Called on the calling thread only.
 using StageProgressFn = std::function<void(const char *stage, double fraction)>;
 
 // The contour tree alone (result.branches left empty).  Throws
 // std::invalid_argument for volumes with NaN or infinite values (naming how
-// many and where) and for empty volumes.
-TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn &progress = {});
+// many and where) and for empty volumes.  A stop request on `stop` is seen
+// by both sweeps (the split tree runs on a second thread) and by every
+// stage, which then unwind with Cancelled.
+TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn &progress = {},
+                                    std::stop_token stop = {});
 
 // (Re)decomposes result.tree into branches ranked by `importance`, adding
 // the stage's time: simplifiers compared on one volume share one tree.
 void decompose(TopologyResult &result, const Volume &volume, const ImportanceFn &importance,
-               const StageProgressFn &progress = {});
+               const StageProgressFn &progress = {}, std::stop_token stop = {});
 
 // Both: compute_contour_tree, then decompose.
 TopologyResult compute_topology(const Volume &volume, const ImportanceFn &importance,
-                                const StageProgressFn &progress = {});
+                                const StageProgressFn &progress = {}, std::stop_token stop = {});
 
 // Peak resident memory of this process so far, in bytes (VmHWM), and a way to
 // restart the peak (for benchmarks measuring one volume after another).
