@@ -1,17 +1,33 @@
 #include "atomic_file.hpp"
 
+#include <atomic>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 #include <unistd.h>
 
 namespace arbor {
 
+namespace {
+
+// Tells apart the temporary files of writers in one process: two threads
+// writing the same target must not share (and truncate) one temporary file.
+std::atomic<uint64_t> next_writer{0};
+
+} // namespace
+
 AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target))
 {
-    temporary_ = target_;
-    temporary_ += ".partial-" + std::to_string(::getpid());
-    file_ = std::fopen(temporary_.c_str(), "wb");
+    // Created exclusively ("x"): a name left behind by a crashed process that
+    // had our pid is skipped, never written through.
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        temporary_ = target_;
+        temporary_ += ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(next_writer++);
+        file_ = std::fopen(temporary_.c_str(), "wbx");
+        if (file_ || errno != EEXIST)
+            break;
+    }
     if (!file_)
         throw std::runtime_error("cannot write " + target_.string() + ": " + std::strerror(errno));
 }

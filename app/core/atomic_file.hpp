@@ -1,6 +1,8 @@
 // atomic_file.hpp - write a file so that readers never see a half-written one
 // and an existing file survives a failed write: data goes to a temporary file
 // in the same folder, which replaces the target only after a successful close.
+// Each writer has its own temporary file, so threads or processes writing the
+// same target at once each replace it with a whole file.
 #pragma once
 
 #include <cstdio>
