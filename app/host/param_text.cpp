@@ -7,17 +7,20 @@
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+#include <charconv>
 #include <vector>
 
 namespace arbor {
 
 namespace {
 
+// The shortest text that reads back as exactly x, so a value survives a
+// session file or a document copy bit for bit.
 std::string number_text(double x)
 {
     char buf[40];
-    std::snprintf(buf, sizeof buf, "%.10g", x);
-    return buf;
+    const auto r = std::to_chars(buf, buf + sizeof buf, x);
+    return std::string(buf, r.ptr);
 }
 
 std::vector<std::string> split_components(const std::string &text)

@@ -31,6 +31,7 @@ struct Orbit {
     double azimuth = 0.0, elevation = 0.0, zoom = 1.0;
     bool perspective = true;
     double view_angle = 30.0; // degrees
+    bool operator==(const Orbit &) const = default;
 };
 
 arbor_camera orbit_camera(const Geometry &geometry, const Orbit &orbit);

@@ -1,0 +1,278 @@
+#include "pipeline.hpp"
+
+#include "stage_compute.hpp"
+
+#include "core/cancelled.hpp"
+
+#include <algorithm>
+
+namespace arbor::pipeline {
+
+struct Pipeline::Slot {
+    explicit Slot(const PluginCatalog &catalog) : plugins(catalog) {}
+
+    // Under the pipeline's mutex:
+    std::shared_ptr<const void> result; // the newest finished result
+    StageKey key{};                     // the revisions it was computed from
+    uint64_t result_serial = 0;         // the job that computed it
+    bool has_result = false;
+    std::vector<std::pair<StageKey, std::shared_ptr<Job>>> active; // waiting or running
+    uint64_t runs = 0;
+
+    // Held by the job computing; with it, the stage's plugin instances.
+    std::mutex busy;
+    PluginSlot plugins;
+};
+
+Pipeline::Pipeline(const PluginRegistry &registry, PipelineOptions options)
+    : catalog_(registry), options_(std::move(options)), snapshot_(std::make_shared<const Document>())
+{
+    for (auto &slot : slots_)
+        slot = std::make_unique<Slot>(catalog_);
+}
+
+Pipeline::~Pipeline()
+{
+    std::list<Worker> workers;
+    {
+        std::lock_guard lock(mutex_);
+        for (auto &slot : slots_)
+            for (auto &[key, job] : slot->active)
+                job->cancel();
+        workers.swap(workers_);
+    }
+    for (Worker &w : workers)
+        w.thread.join();
+}
+
+Document Pipeline::document() const
+{
+    std::lock_guard lock(mutex_);
+    return document_;
+}
+
+std::array<uint64_t, kGroupCount> Pipeline::revisions() const
+{
+    std::lock_guard lock(mutex_);
+    return revisions_;
+}
+
+Document Pipeline::resolve(const Document &d) const
+{
+    Document r = d;
+    // The importer may stay unnamed (chosen by probing the file at import).
+    if (!r.input.importer.empty())
+        r.input.importer = catalog_.resolve(ARBOR_KIND_IMPORTER, r.input.importer);
+    for (PluginSetting &f : r.filters)
+        f = catalog_.resolve(ARBOR_KIND_FILTER, f);
+    const auto required = [&](std::string_view kind, const PluginSetting &s) {
+        if (s.empty())
+            throw std::invalid_argument("no " + kind_noun(kind) + " chosen");
+        return catalog_.resolve(kind, s);
+    };
+    r.simplifier = required(ARBOR_KIND_SIMPLIFIER, r.simplifier);
+    r.appearance.generator = required(ARBOR_KIND_TF_GENERATOR, r.appearance.generator);
+    r.view.renderer = required(ARBOR_KIND_RENDERER, r.view.renderer);
+    if (!r.appearance.depictor.empty())
+        r.appearance.depictor = catalog_.resolve(ARBOR_KIND_DEPICTOR, r.appearance.depictor);
+    if (!r.appearance.legend.empty())
+        r.appearance.legend = catalog_.resolve(ARBOR_KIND_DEPICTOR, r.appearance.legend);
+    if (r.cut.keep && *r.cut.keep < 1)
+        throw std::invalid_argument("a cut keeps at least 1 branch (the root)");
+    if (r.cut.threshold && !(*r.cut.threshold >= 0.0 && *r.cut.threshold <= 1.0))
+        throw std::invalid_argument("a cut threshold lies in [0, 1]");
+    if (r.appearance.lut_size < 2 || r.appearance.lut_size > 65536)
+        throw std::invalid_argument("lookup tables have 2 to 65536 entries");
+    if (r.view.width < 1 || r.view.height < 1 || r.view.width > 16384 || r.view.height > 16384)
+        throw std::invalid_argument("images are 1 to 16384 pixels wide and high");
+    return r;
+}
+
+void Pipeline::update(const Document &resolved)
+{
+    std::lock_guard lock(mutex_);
+    const auto bump = [&](Group g, bool changed) {
+        if (changed)
+            revisions_[index_of(g)] = ++revision_counter_;
+    };
+    bump(Group::Input, resolved.input != document_.input);
+    bump(Group::Filters, resolved.filters != document_.filters);
+    bump(Group::Simplifier, resolved.simplifier != document_.simplifier);
+    bump(Group::Cut, resolved.cut != document_.cut);
+    bump(Group::Appearance, resolved.appearance != document_.appearance);
+    bump(Group::View, resolved.view != document_.view);
+    document_ = resolved;
+    snapshot_ = std::make_shared<const Document>(document_);
+}
+
+void Pipeline::set_document(const Document &document)
+{
+    update(resolve(document));
+}
+
+void Pipeline::set_input(const InputChoice &input)
+{
+    Document d = this->document();
+    d.input = input;
+    set_document(d);
+}
+
+void Pipeline::set_filters(const std::vector<PluginSetting> &filters)
+{
+    Document d = this->document();
+    d.filters = filters;
+    set_document(d);
+}
+
+void Pipeline::set_simplifier(const PluginSetting &simplifier)
+{
+    Document d = this->document();
+    d.simplifier = simplifier;
+    set_document(d);
+}
+
+void Pipeline::set_cut(const CutChoice &cut)
+{
+    Document d = this->document();
+    d.cut = cut;
+    set_document(d);
+}
+
+void Pipeline::set_appearance(const Appearance &appearance)
+{
+    Document d = this->document();
+    d.appearance = appearance;
+    set_document(d);
+}
+
+void Pipeline::set_view(const ViewChoice &view)
+{
+    Document d = this->document();
+    d.view = view;
+    set_document(d);
+}
+
+std::shared_ptr<Job> Pipeline::request(Stage stage)
+{
+    std::lock_guard lock(mutex_);
+    reap_locked();
+    return ensure_locked(stage, snapshot_);
+}
+
+std::shared_ptr<Job> Pipeline::ensure_locked(Stage stage, const std::shared_ptr<const Document> &document)
+{
+    Slot &slot = *slots_[index_of(stage)];
+    const StageKey key = key_of(stage, revisions_);
+    if (slot.has_result && slot.key == key)
+        return Job::finished(stage, slot.result);
+    for (auto &[k, job] : slot.active)
+        if (k == key && !job->stop_token().stop_requested())
+            return job; // already being computed for these inputs
+    // A newer request for the stage: the older jobs' results would be stale.
+    for (auto &[k, job] : slot.active)
+        if (k != key)
+            job->cancel();
+    std::vector<std::shared_ptr<Job>> upstream;
+    for (const Stage u : upstream_of(stage))
+        upstream.push_back(ensure_locked(u, document));
+    auto job = std::make_shared<Job>(stage, ++job_counter_, options_.progress, options_.log);
+    slot.active.emplace_back(key, job);
+    workers_.push_back({job, std::thread(&Pipeline::execute, this, job, document, std::move(upstream), key)});
+    return job;
+}
+
+void Pipeline::execute(const std::shared_ptr<Job> &job, std::shared_ptr<const Document> document,
+                       std::vector<std::shared_ptr<Job>> upstream, StageKey key)
+{
+    Slot &slot = *slots_[index_of(job->stage())];
+    const auto leave = [&] {
+        std::lock_guard lock(mutex_);
+        std::erase_if(slot.active, [&](const auto &entry) { return entry.second == job; });
+    };
+    try {
+        StageContext context{*document, catalog_, options_, *job, slot.plugins, {}};
+        for (const std::shared_ptr<Job> &u : upstream)
+            context.inputs[index_of(u->stage())] = u->wait(job->stop_token());
+        upstream.clear(); // the results are held; the jobs may go
+        std::unique_lock busy(slot.busy);
+        throw_if_stopped(job->stop_token());
+        job->start();
+        std::shared_ptr<const void> result = compute_stage(job->stage(), context);
+        {
+            std::lock_guard lock(mutex_);
+            ++slot.runs;
+            if (job->serial() > slot.result_serial) {
+                slot.result = result;
+                slot.key = key;
+                slot.result_serial = job->serial();
+                slot.has_result = true;
+            }
+            std::erase_if(slot.active, [&](const auto &entry) { return entry.second == job; });
+        }
+        job->succeed(std::move(result));
+    } catch (const Cancelled &) {
+        leave();
+        job->cancelled();
+    } catch (...) {
+        leave();
+        job->fail(std::current_exception());
+    }
+}
+
+void Pipeline::reap_locked()
+{
+    // A worker's last step is ending its job; joining it then is immediate.
+    for (auto it = workers_.begin(); it != workers_.end();) {
+        if (it->job->ended()) {
+            it->thread.join();
+            it = workers_.erase(it);
+        } else {
+            ++it;
+        }
+    }
+}
+
+std::shared_ptr<const void> Pipeline::latest_result(Stage stage) const
+{
+    std::lock_guard lock(mutex_);
+    return slots_[index_of(stage)]->result;
+}
+
+bool Pipeline::is_current(Stage stage) const
+{
+    std::lock_guard lock(mutex_);
+    const Slot &slot = *slots_[index_of(stage)];
+    return slot.has_result && slot.key == key_of(stage, revisions_);
+}
+
+std::vector<std::shared_ptr<Job>> Pipeline::active_jobs() const
+{
+    std::vector<std::shared_ptr<Job>> out;
+    {
+        std::lock_guard lock(mutex_);
+        for (const auto &slot : slots_)
+            for (const auto &[key, job] : slot->active)
+                out.push_back(job);
+    }
+    std::sort(out.begin(), out.end(), [](const auto &a, const auto &b) { return a->serial() < b->serial(); });
+    return out;
+}
+
+void Pipeline::cancel_all()
+{
+    std::lock_guard lock(mutex_);
+    for (const auto &slot : slots_)
+        for (const auto &[key, job] : slot->active)
+            job->cancel();
+}
+
+std::array<uint64_t, kStageCount> Pipeline::stage_runs() const
+{
+    std::lock_guard lock(mutex_);
+    std::array<uint64_t, kStageCount> runs{};
+    for (std::size_t s = 0; s < kStageCount; ++s)
+        runs[s] = slots_[s]->runs;
+    return runs;
+}
+
+} // namespace arbor::pipeline

@@ -1,0 +1,127 @@
+// pipeline.hpp - the one object every front (the CLI, the workstation, a
+// study script) stands on: the user's choices (a Document), the latest
+// result of every stage with the revisions it was computed from, and the
+// jobs computing the stale ones.
+//
+//   Pipeline p(registry, options);
+//   p.set_document(doc);                       // checked, revisions bumped per changed group
+//   auto image = p.run<Stage::Render>();       // runs import .. render, or what is stale of it
+//   p.set_view(v);  p.run<Stage::Render>();    // renders again, nothing else
+//
+// request() starts a job per stale stage up to the one asked for and
+// returns that stage's job at once; run() also waits for it.  A stage whose
+// inputs did not change is served from its cached result; one already being
+// computed for the same inputs is joined, not started twice; a request for a
+// stage with different inputs cancels the older job of that stage still
+// running (a newer slider position wins).  Jobs of one stage run one at a
+// time (they share the stage's plugin instances); jobs of different stages
+// run in parallel.  Results are immutable snapshots another thread may read
+// while the next job runs.
+//
+// Thread-safety: every member function may be called from any thread.
+#pragma once
+
+#include "document.hpp"
+#include "job.hpp"
+#include "plugin_catalog.hpp"
+#include "stage_graph.hpp"
+#include "stage_results.hpp"
+
+#include <array>
+#include <filesystem>
+#include <list>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace arbor::pipeline {
+
+struct PipelineOptions {
+    uint64_t max_volume_bytes = uint64_t{1} << 34;
+    // The on-disk cache of contour trees; empty: none (always recompute).
+    std::filesystem::path tree_cache_folder;
+    uint64_t tree_cache_max_bytes = uint64_t{4} << 30;
+    // Where every job's progress and log also go (a terminal); may be null
+    // (the log then goes to the host log).
+    ProgressSink *progress = nullptr;
+    LogSink *log = nullptr;
+};
+
+class Pipeline {
+public:
+    Pipeline(const PluginRegistry &registry, PipelineOptions options = {});
+    ~Pipeline(); // cancels every job and waits for them
+    Pipeline(const Pipeline &) = delete;
+    Pipeline &operator=(const Pipeline &) = delete;
+
+    const PluginCatalog &catalog() const { return catalog_; }
+    const PipelineOptions &options() const { return options_; }
+
+    // The choices.  Setting resolves every plugin setting through the
+    // catalog first (std::invalid_argument for an unknown plugin or a bad
+    // value; the document is then left as it was) and bumps the revision of
+    // each group whose value changed; setting equal values changes nothing.
+    Document document() const;
+    void set_document(const Document &document);
+    void set_input(const InputChoice &input);
+    void set_filters(const std::vector<PluginSetting> &filters);
+    void set_simplifier(const PluginSetting &simplifier);
+    void set_cut(const CutChoice &cut);
+    void set_appearance(const Appearance &appearance);
+    void set_view(const ViewChoice &view);
+    std::array<uint64_t, kGroupCount> revisions() const;
+
+    // Starts what is stale up to `stage`; returns the stage's job (already
+    // ended when its result was current).
+    std::shared_ptr<Job> request(Stage stage);
+    // request() and wait: the stage's result, or its (or an upstream
+    // stage's) error; Cancelled when cancelled.
+    template <Stage S> std::shared_ptr<const StageResult<S>> run()
+    {
+        return std::static_pointer_cast<const StageResult<S>>(request(S)->wait());
+    }
+
+    // The newest finished result of a stage, current or not (null if none).
+    template <Stage S> std::shared_ptr<const StageResult<S>> latest() const
+    {
+        return std::static_pointer_cast<const StageResult<S>>(latest_result(S));
+    }
+    bool is_current(Stage stage) const;
+
+    // Jobs waiting or running, oldest first.
+    std::vector<std::shared_ptr<Job>> active_jobs() const;
+    void cancel_all();
+
+    // Per stage: how many times it was computed (not served from its cache).
+    std::array<uint64_t, kStageCount> stage_runs() const;
+
+private:
+    struct Slot; // per stage: result, active jobs, plugin instances, the lock its jobs take
+    struct Worker {
+        std::shared_ptr<Job> job;
+        std::thread thread;
+    };
+
+    std::shared_ptr<Job> ensure_locked(Stage stage, const std::shared_ptr<const Document> &document);
+    void execute(const std::shared_ptr<Job> &job, std::shared_ptr<const Document> document,
+                 std::vector<std::shared_ptr<Job>> upstream, StageKey key);
+    std::shared_ptr<const void> latest_result(Stage stage) const;
+    void reap_locked();
+    void update(const Document &resolved);
+    Document resolve(const Document &document) const;
+
+    PluginCatalog catalog_;
+    const PipelineOptions options_;
+
+    mutable std::mutex mutex_; // the document, revisions, slots' results and job lists, workers
+    Document document_;
+    std::shared_ptr<const Document> snapshot_;
+    std::array<uint64_t, kGroupCount> revisions_{};
+    uint64_t revision_counter_ = 0;
+    uint64_t job_counter_ = 0;
+    std::array<std::unique_ptr<Slot>, kStageCount> slots_;
+    std::list<Worker> workers_;
+};
+
+} // namespace arbor::pipeline

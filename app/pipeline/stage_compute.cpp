@@ -1,0 +1,345 @@
+#include "stage_compute.hpp"
+#include "tree_cache.hpp"
+
+#include "core/cancelled.hpp"
+#include "core/phantom.hpp"
+#include "core/stopwatch.hpp"
+#include "host/filter_run.hpp"
+#include "host/simplifier_importance.hpp"
+#include "host/volume_import.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <stdexcept>
+
+namespace arbor::pipeline {
+
+namespace {
+
+uint64_t next_revision()
+{
+    static std::atomic<uint64_t> counter{0};
+    return ++counter;
+}
+
+topology::FieldView field_of(const Volume &v)
+{
+    return {v.type(), v.data(), static_cast<uint32_t>(v.voxel_count()), &v.geometry()};
+}
+
+std::shared_ptr<const void> import(StageContext &c)
+{
+    const InputChoice &in = c.document.input;
+    Stopwatch watch;
+    auto r = std::make_shared<ImportResult>();
+    if (in.phantom) {
+        PhantomOptions o;
+        o.size = in.phantom->size;
+        o.noise_sigma = in.phantom->noise;
+        o.blobs = in.phantom->blobs;
+        o.seed = in.phantom->seed;
+        r->volume = std::make_shared<const Volume>(make_phantom(builtin_phantom(in.phantom->kind), o));
+        r->source = "phantom:" + in.phantom->kind;
+    } else {
+        if (in.path.empty())
+            throw std::invalid_argument("no input: give a volume file or folder, or --phantom head");
+        PluginSetting setting = in.importer;
+        setting.id = setting.id.empty() ? choose_importer(c.catalog.registry(), in.path)
+                                        : c.catalog.find(ARBOR_KIND_IMPORTER, setting.id);
+        PluginSlot::Lease importer = c.plugins.lease(setting, &c.job);
+        require_parameters(*importer, setting);
+        r->volume = std::make_shared<const Volume>(
+            import_volume(*importer, in.path, &c.job, c.options.max_volume_bytes, c.stop()));
+        r->source = in.path.string();
+        r->importer = {setting.id, importer->descriptor().version, read_params(*importer)};
+    }
+    r->seconds = watch.lap();
+    return r;
+}
+
+std::shared_ptr<const void> filter(StageContext &c)
+{
+    const auto imported = c.input<Stage::Import>();
+    Stopwatch watch;
+    auto r = std::make_shared<FilterResult>();
+    r->volume = imported->volume;
+    r->source = imported->source;
+    for (const PluginSetting &setting : c.document.filters) {
+        throw_if_stopped(c.stop());
+        PluginSlot::Lease f = c.plugins.lease(setting, &c.job);
+        r->volume = std::make_shared<const Volume>(
+            run_filter(*f, *r->volume, &c.job, c.options.max_volume_bytes, c.stop()));
+        r->source += " | " + describe_setting(setting, f->param_descriptions());
+        r->filters.push_back(setting);
+    }
+    r->revision = next_revision();
+    r->seconds = watch.lap();
+    return r;
+}
+
+// From the on-disk cache when it holds the tree of these very voxels;
+// otherwise computed, then stored there.  A cache that cannot be read or
+// written costs a warning, never the result.
+std::shared_ptr<const void> contour_tree(StageContext &c)
+{
+    const Volume &volume = *c.input<Stage::Filter>()->volume;
+    auto r = std::make_shared<ContourTreeResult>();
+    Stopwatch watch;
+    std::optional<TreeCache> cache;
+    std::string key;
+    if (!c.options.tree_cache_folder.empty() && volume.voxel_count() > 0) {
+        cache.emplace(c.options.tree_cache_folder, c.options.tree_cache_max_bytes);
+        key = tree_cache_key(volume);
+        std::string why;
+        c.job.report("reading the cached contour tree", 0.0);
+        if (std::optional<topology::ContourTree> t = cache->load(key, volume.voxel_count(), &why, c.stop())) {
+            c.job.finish();
+            r->tree = std::move(*t);
+            r->from_cache = true;
+            r->seconds = watch.lap();
+            r->timings.push_back({"cache read", r->seconds});
+            return r;
+        }
+        c.job.finish();
+        throw_if_stopped(c.stop());
+        if (why.rfind("unusable", 0) == 0)
+            c.job.write(ARBOR_LOG_WARNING, "contour-tree cache", why + "; computing the tree again");
+    }
+    topology::TopologyResult t = topology::compute_contour_tree(
+        volume, [&c](const char *stage, double f) { c.job.report(stage, f); }, c.stop());
+    c.job.finish();
+    r->tree = std::move(t.tree);
+    r->timings = std::move(t.timings);
+    r->seconds = watch.lap();
+    if (cache) {
+        try {
+            cache->store(key, r->tree);
+        } catch (const std::exception &e) {
+            c.job.write(ARBOR_LOG_WARNING, "contour-tree cache", std::string("not stored: ") + e.what());
+        }
+    }
+    return r;
+}
+
+std::shared_ptr<const void> decomposition(StageContext &c)
+{
+    const auto tree = c.input<Stage::ContourTree>();
+    const Volume &volume = *c.input<Stage::Filter>()->volume;
+    Stopwatch watch;
+    auto r = std::make_shared<DecompositionResult>();
+    PluginSlot::Lease simplifier = c.plugins.lease(c.document.simplifier, &c.job);
+    r->simplifier = c.document.simplifier;
+    r->simplifier_name = simplifier->descriptor().name;
+    const topology::ImportanceFn importance = simplifier_importance(*simplifier);
+    const std::string activity = "branches by " + short_name(r->simplifier.id);
+    const std::stop_token stop = c.stop();
+    r->branches = topology::decompose_branches(tree->tree, field_of(volume), importance, [&](double f) {
+        throw_if_stopped(stop);
+        c.job.report(activity, f);
+    });
+    c.job.finish();
+    r->seconds = watch.lap();
+    return r;
+}
+
+std::shared_ptr<const void> cut(StageContext &c)
+{
+    const auto d = c.input<Stage::Decomposition>();
+    const auto tree = c.input<Stage::ContourTree>();
+    const Volume &volume = *c.input<Stage::Filter>()->volume;
+    Stopwatch watch;
+    auto r = std::make_shared<CutResult>();
+    r->decomposition = d;
+    r->requested = c.document.cut;
+    if (r->requested.keep) {
+        r->cut = topology::cut_by_count(d->branches, *r->requested.keep);
+    } else if (r->requested.threshold) {
+        r->cut = topology::cut_by_threshold(d->branches, *r->requested.threshold);
+    } else {
+        r->knee = topology::knee_branch_count(d->branches);
+        r->cut = topology::cut_by_count(d->branches, r->knee->keep);
+    }
+    r->tree = std::make_unique<const BranchTreeRecord>(tree->tree, d->branches, r->cut, volume);
+    r->seconds = watch.lap();
+    return r;
+}
+
+std::vector<std::string> kept_label_names(const topology::BranchDecomposition &d,
+                                          const topology::SimplificationCut &cut)
+{
+    std::vector<std::string> names;
+    names.reserve(cut.kept.size());
+    for (const uint32_t b : cut.kept) {
+        const topology::BranchKind k = d.branches[b].kind;
+        names.push_back(k == topology::BranchKind::Root ? std::string("root")
+                                                         : (k == topology::BranchKind::Maximum ? "max-" : "min-") +
+                                                               std::to_string(b));
+    }
+    return names;
+}
+
+std::shared_ptr<const void> labels(StageContext &c)
+{
+    const auto cut = c.input<Stage::Cut>();
+    const auto tree = c.input<Stage::ContourTree>();
+    Stopwatch watch;
+    auto r = std::make_shared<LabelsResult>();
+    r->labels = topology::label_voxels(tree->tree, cut->decomposition->branches, cut->cut);
+    r->names = kept_label_names(cut->decomposition->branches, cut->cut);
+    r->revision = next_revision();
+    r->seconds = watch.lap();
+    return r;
+}
+
+void check_selection(const Appearance &a, const CutResult &cut)
+{
+    if (a.selected && (*a.selected < 0 || static_cast<std::size_t>(*a.selected) >= cut.kept()))
+        throw std::invalid_argument("selected branch " + std::to_string(*a.selected) + ": the simplified tree has " +
+                                    std::to_string(cut.kept()) + " branches (0.." + std::to_string(cut.kept() - 1) +
+                                    ")");
+}
+
+std::shared_ptr<const void> depiction(StageContext &c)
+{
+    const auto cut = c.input<Stage::Cut>();
+    const Appearance &a = c.document.appearance;
+    check_selection(a, *cut);
+    Stopwatch watch;
+    auto r = std::make_shared<DepictionResult>();
+    r->cut = cut;
+    r->depictor = a.depictor;
+    r->request.struct_size = sizeof r->request;
+    r->request.selected_branch = a.selected.value_or(-1);
+    r->request.tree = &cut->tree->record();
+    auto record = std::make_unique<DepictionRecord>(cut->tree->size());
+    if (!a.depictor.empty()) {
+        PluginSlot::Lease depictor = c.plugins.lease(a.depictor, &c.job);
+        depict(*depictor, r->request, *record, &c.job, c.stop());
+    }
+    r->depiction = std::move(record);
+    r->seconds = watch.lap();
+    return r;
+}
+
+std::shared_ptr<const void> transfer_functions(StageContext &c)
+{
+    const auto depicted = c.input<Stage::Depiction>();
+    const Volume &volume = *c.input<Stage::Filter>()->volume;
+    const Appearance &a = c.document.appearance;
+    const CutResult &cut = *depicted->cut;
+    Stopwatch watch;
+    auto r = std::make_shared<TransferFunctionsResult>();
+    r->depiction = depicted;
+    r->value_range = {cut.decomposition->branches.global_min, cut.decomposition->branches.global_max};
+    PluginSlot::Lease generator = c.plugins.lease(a.generator, &c.job);
+    r->generator = a.generator;
+    const arbor_volume view = volume.view();
+    arbor_tf_request request{};
+    request.struct_size = sizeof request;
+    request.tree = &cut.tree->record();
+    request.depiction = a.depictor.empty() ? nullptr : &depicted->depiction->record();
+    request.volume = &view;
+    request.value_range[0] = r->value_range[0];
+    request.value_range[1] = r->value_range[1];
+    const auto &sp = volume.geometry().spacing;
+    request.min_spacing = std::min({sp[0], sp[1], sp[2]});
+    auto functions = std::make_shared<TransferFunctions>(cut.tree->size(), a.lut_size, request.min_spacing);
+    generate_transfer_functions(*generator, request, *functions, &c.job, c.stop());
+    r->functions = std::move(functions);
+    r->seconds = watch.lap();
+    return r;
+}
+
+std::shared_ptr<const void> render(StageContext &c)
+{
+    const auto tf = c.input<Stage::TransferFunctions>();
+    const auto labels = c.input<Stage::Labels>();
+    const auto filtered = c.input<Stage::Filter>();
+    const Volume &volume = *filtered->volume;
+    const ViewChoice &v = c.document.view;
+    Stopwatch watch;
+    auto r = std::make_shared<RenderResult>();
+    r->renderer = v.renderer;
+    PluginSlot::Lease renderer = c.plugins.lease(v.renderer, &c.job);
+    const arbor_volume view = volume.view();
+    arbor_label_map map{};
+    map.struct_size = sizeof map;
+    map.label_count = tf->functions->branch_count();
+    for (int a = 0; a < 3; ++a)
+        map.dims[a] = volume.geometry().dims[a];
+    map.labels = labels->labels.data();
+    r->camera = orbit_camera(volume.geometry(), v.orbit);
+    arbor_render_request request{};
+    request.struct_size = sizeof request;
+    request.volume = &view;
+    request.labels = &map;
+    request.transfer_functions = &tf->functions->record();
+    request.camera = &r->camera;
+    for (std::size_t i = 0; i < 4; ++i)
+        request.background[i] = static_cast<float>(v.background[i]);
+    request.volume_revision = filtered->revision;
+    request.labels_revision = labels->revision;
+    r->image = render_image(*renderer, request, v.width, v.height, &c.job, c.stop());
+    r->seconds = watch.lap();
+    return r;
+}
+
+std::shared_ptr<const void> legend(StageContext &c)
+{
+    const auto cut = c.input<Stage::Cut>();
+    const Appearance &a = c.document.appearance;
+    check_selection(a, *cut);
+    if (a.legend.empty())
+        throw std::invalid_argument("no legend depictor chosen");
+    Stopwatch watch;
+    auto r = std::make_shared<LegendResult>();
+    r->depictor = a.legend;
+    // Around the selected branch, or the deepest one (the innermost structure).
+    const arbor_branch_tree &tree = cut->tree->record();
+    for (uint32_t b = 0; b < tree.branch_count; ++b)
+        if (tree.depth[b] > tree.depth[r->selected])
+            r->selected = b;
+    if (a.selected)
+        r->selected = static_cast<uint32_t>(*a.selected);
+    r->size = a.legend_size;
+    r->rgba.assign(std::size_t{r->size} * r->size * 4, 0.0f);
+    arbor_depiction_request request{};
+    request.struct_size = sizeof request;
+    request.selected_branch = static_cast<int32_t>(r->selected);
+    request.tree = &tree;
+    arbor_image image{};
+    image.struct_size = sizeof image;
+    image.width = image.height = r->size;
+    image.row_stride = 4 * static_cast<int64_t>(r->size);
+    image.rgba = r->rgba.data();
+    PluginSlot::Lease depictor = c.plugins.lease(a.legend, &c.job);
+    const auto &table = depictor->interface<arbor_depictor_v1>(ARBOR_INTERFACE_DEPICTOR);
+    Task task(&c.job, c.stop());
+    const arbor_status s = table.legend(depictor->get(), &request, &image, task.get());
+    if (s == ARBOR_ERROR_UNSUPPORTED)
+        throw std::invalid_argument(depictor->id() + " draws no legend");
+    depictor->check(s, "drawing the legend");
+    r->seconds = watch.lap();
+    return r;
+}
+
+} // namespace
+
+std::shared_ptr<const void> compute_stage(Stage stage, StageContext &context)
+{
+    switch (stage) {
+    case Stage::Import: return import(context);
+    case Stage::Filter: return filter(context);
+    case Stage::ContourTree: return contour_tree(context);
+    case Stage::Decomposition: return decomposition(context);
+    case Stage::Cut: return cut(context);
+    case Stage::Labels: return labels(context);
+    case Stage::Depiction: return depiction(context);
+    case Stage::TransferFunctions: return transfer_functions(context);
+    case Stage::Render: return render(context);
+    case Stage::Legend: return legend(context);
+    }
+    throw std::logic_error("unknown stage");
+}
+
+} // namespace arbor::pipeline

@@ -1,0 +1,122 @@
+// stage_results.hpp - what each stage computes.  Results are immutable
+// snapshots shared as std::shared_ptr<const T>: a front (the workstation's
+// UI thread) may read one while the next job runs, and a result holds the
+// upstream results it points into, so it stays valid on its own.
+#pragma once
+
+#include "document.hpp"
+#include "stage_graph.hpp"
+
+#include "core/volume.hpp"
+#include "host/branch_tree_record.hpp"
+#include "host/rendering.hpp"
+#include "host/tf_generation.hpp"
+#include "topology/importance_knee.hpp"
+#include "topology/simplification.hpp"
+#include "topology/topology_pipeline.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace arbor::pipeline {
+
+struct ImportResult {
+    std::shared_ptr<const Volume> volume;
+    std::string source;    // the path, or "phantom:head"
+    PluginSetting importer; // as used: the values read back after the import (empty for phantoms)
+    double seconds = 0.0;
+};
+
+struct FilterResult {
+    std::shared_ptr<const Volume> volume; // the import's own when the chain is empty
+    std::string source;                   // "scan.nrrd | gaussian:sigma=1.5"
+    std::vector<PluginSetting> filters;   // as applied
+    uint64_t revision = 0;                // unique per computed volume (renderers cache on it)
+    double seconds = 0.0;
+};
+
+struct ContourTreeResult {
+    topology::ContourTree tree;
+    std::vector<topology::StageTiming> timings;
+    double seconds = 0.0;
+    bool from_cache = false;
+};
+
+struct DecompositionResult {
+    PluginSetting simplifier;
+    std::string simplifier_name;
+    topology::BranchDecomposition branches;
+    double seconds = 0.0;
+};
+
+struct CutResult {
+    std::shared_ptr<const DecompositionResult> decomposition;
+    CutChoice requested;
+    std::optional<topology::KneeChoice> knee; // set when the count came from the knee
+    topology::SimplificationCut cut;
+    // The kept branches as the record depictors and generators read; branch
+    // k of it is label k.
+    std::unique_ptr<const BranchTreeRecord> tree;
+    double seconds = 0.0;
+
+    std::size_t kept() const { return cut.kept.size(); }
+    // The cut as it was made ("keep 12" also for the knee's choice).
+    CutChoice effective() const;
+};
+
+struct LabelsResult {
+    std::vector<uint32_t> labels;    // per voxel: the kept label
+    std::vector<std::string> names;  // per label: "root", "max-<branch>", "min-<branch>"
+    uint64_t revision = 0;
+    double seconds = 0.0;
+};
+
+struct DepictionResult {
+    std::shared_ptr<const CutResult> cut;
+    PluginSetting depictor;             // empty: none depicted (neutral record)
+    arbor_depiction_request request{};  // the selection the depictor saw
+    std::unique_ptr<const DepictionRecord> depiction;
+    double seconds = 0.0;
+};
+
+struct TransferFunctionsResult {
+    std::shared_ptr<const DepictionResult> depiction;
+    PluginSetting generator;               // empty when read from a file
+    std::filesystem::path file;            // the file they came from, if any
+    std::shared_ptr<const TransferFunctions> functions;
+    std::array<double, 2> value_range{};   // the volume's stored minimum and maximum
+    double seconds = 0.0;
+};
+
+struct RenderResult {
+    PluginSetting renderer;
+    arbor_camera camera{};
+    RenderedImage image;
+    double seconds = 0.0;
+};
+
+struct LegendResult {
+    PluginSetting depictor;
+    uint32_t selected = 0; // the branch the wheel is drawn around
+    uint32_t size = 0;
+    std::vector<float> rgba; // size x size, premultiplied, row 0 at the top
+    double seconds = 0.0;
+};
+
+// The result type of each stage.
+template <Stage S> struct StageResultOf;
+template <> struct StageResultOf<Stage::Import> { using type = ImportResult; };
+template <> struct StageResultOf<Stage::Filter> { using type = FilterResult; };
+template <> struct StageResultOf<Stage::ContourTree> { using type = ContourTreeResult; };
+template <> struct StageResultOf<Stage::Decomposition> { using type = DecompositionResult; };
+template <> struct StageResultOf<Stage::Cut> { using type = CutResult; };
+template <> struct StageResultOf<Stage::Labels> { using type = LabelsResult; };
+template <> struct StageResultOf<Stage::Depiction> { using type = DepictionResult; };
+template <> struct StageResultOf<Stage::TransferFunctions> { using type = TransferFunctionsResult; };
+template <> struct StageResultOf<Stage::Render> { using type = RenderResult; };
+template <> struct StageResultOf<Stage::Legend> { using type = LegendResult; };
+template <Stage S> using StageResult = typename StageResultOf<S>::type;
+
+} // namespace arbor::pipeline

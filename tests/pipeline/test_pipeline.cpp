@@ -1,0 +1,534 @@
+// The pipeline: every kind of change re-runs exactly the stages that depend
+// on it (stage-run counters), jobs cancel one at a time, a newer request
+// supersedes an older one, results are snapshots, errors name their cause,
+// and the on-disk tree cache is consulted.  Real plugins, built-in phantom.
+#include "pipeline/pipeline.hpp"
+#include "pipeline/tree_cache.hpp"
+
+#include "plugin_fixture.hpp"
+#include "test_paths.hpp"
+
+#include "core/cancelled.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <thread>
+
+namespace arbor::pipeline {
+namespace {
+
+using namespace std::chrono_literals;
+
+Document phantom_document(int64_t size = 40, double noise = 4.0)
+{
+    Document d = default_document();
+    d.input.phantom = PhantomInput{};
+    d.input.phantom->size = size;
+    d.input.phantom->noise = noise;
+    d.cut.keep = 8;
+    d.view.width = d.view.height = 48;
+    return d;
+}
+
+// Stage-run counters as a map, for readable failures.
+std::map<std::string, uint64_t> runs(const Pipeline &p)
+{
+    std::map<std::string, uint64_t> out;
+    const auto r = p.stage_runs();
+    for (std::size_t s = 0; s < kStageCount; ++s)
+        out[stage_name(static_cast<Stage>(s))] = r[s];
+    return out;
+}
+
+// The counters after one change, minus those before: 1 where it re-ran.
+std::map<std::string, uint64_t> reruns(const std::map<std::string, uint64_t> &before, const Pipeline &p)
+{
+    std::map<std::string, uint64_t> out = runs(p);
+    for (auto &[stage, n] : out)
+        n -= before.at(stage);
+    return out;
+}
+
+std::map<std::string, uint64_t> only(std::initializer_list<const char *> stages)
+{
+    std::map<std::string, uint64_t> out;
+    for (std::size_t s = 0; s < kStageCount; ++s)
+        out[stage_name(static_cast<Stage>(s))] = 0;
+    for (const char *s : stages)
+        out.at(s) = 1;
+    return out;
+}
+
+const std::map<std::string, uint64_t> kLook = only({"depiction", "transfer_functions", "render"});
+
+class PipelineStages : public ::testing::Test {
+protected:
+    PipelineStages() : pipeline(test::built_plugins())
+    {
+        pipeline.set_document(phantom_document());
+        first = pipeline.run<Stage::Render>();
+        base = runs(pipeline);
+    }
+
+    // Applies `change` to the document, renders again, returns what re-ran.
+    template <class F> std::map<std::string, uint64_t> after(F change)
+    {
+        Document d = pipeline.document();
+        change(d);
+        pipeline.set_document(d);
+        pipeline.run<Stage::Render>();
+        auto out = reruns(base, pipeline);
+        base = runs(pipeline);
+        return out;
+    }
+
+    Pipeline pipeline;
+    std::shared_ptr<const RenderResult> first;
+    std::map<std::string, uint64_t> base;
+};
+
+TEST_F(PipelineStages, FirstRenderRunsEveryStageOnceAndTheLegendNotAtAll)
+{
+    auto want = only({"import", "filter", "contour_tree", "decomposition", "cut", "labels", "depiction",
+                      "transfer_functions", "render"});
+    EXPECT_EQ(base, want);
+    EXPECT_EQ(first->image.width, 48u);
+    for (std::size_t s = 0; s < kStageCount; ++s)
+        EXPECT_EQ(pipeline.is_current(static_cast<Stage>(s)), static_cast<Stage>(s) != Stage::Legend);
+}
+
+TEST_F(PipelineStages, NothingChangedNothingRuns)
+{
+    EXPECT_EQ(after([](Document &) {}), only({}));
+    // Setting the same values again (as a front does on every frame) is no change either.
+    // The same plugin by its short name with its defaults left out resolves to
+    // the same full setting.
+    EXPECT_EQ(after([](Document &d) {
+                  d.appearance.generator = {"residue-flow", "", {}};
+                  d.simplifier = {"org.arbor.simplifier.itri", "", {}};
+              }),
+              only({}));
+}
+
+TEST_F(PipelineStages, GeneratorAndDepictorParametersAndSelectionRedoTheLook)
+{
+    EXPECT_EQ(after([](Document &d) { d.appearance.generator.params["flow-rate"] = "120"; }), kLook);
+    EXPECT_EQ(after([](Document &d) { d.appearance.generator.params["shape"] = "hat"; }), kLook);
+    EXPECT_EQ(after([](Document &d) { d.appearance.generator.params["hues"] = "X:30"; }), kLook);
+    EXPECT_EQ(after([](Document &d) { d.appearance.depictor.params["floor"] = "0.3"; }), kLook);
+    EXPECT_EQ(after([](Document &d) { d.appearance.selected = 2; }), kLook);
+    EXPECT_EQ(after([](Document &d) { d.appearance.depictor = {}; }), kLook); // relation none
+    EXPECT_EQ(after([](Document &d) { d.appearance.generator = {"histogram-ramp", "", {}}; }), kLook);
+}
+
+TEST_F(PipelineStages, KeepAndThresholdRedoTheCutNeverTheDecomposition)
+{
+    const auto want = only({"cut", "labels", "depiction", "transfer_functions", "render"});
+    EXPECT_EQ(after([](Document &d) { d.cut.keep = 5; }), want);
+    EXPECT_EQ(after([](Document &d) {
+                  d.cut.keep.reset();
+                  d.cut.threshold = 0.001;
+              }),
+              want);
+    EXPECT_EQ(after([](Document &d) { d.cut = {}; }), want); // the knee
+    EXPECT_TRUE(pipeline.latest<Stage::Cut>()->knee);
+}
+
+TEST_F(PipelineStages, SimplifierOrItsParametersRedoTheDecompositionNeverTheTree)
+{
+    const auto want = only({"decomposition", "cut", "labels", "depiction", "transfer_functions", "render"});
+    EXPECT_EQ(after([](Document &d) { d.simplifier = {"persistence", "", {}}; }), want);
+    EXPECT_EQ(after([](Document &d) { d.simplifier = {"n-measure", "", {}}; }), want);
+    EXPECT_EQ(after([](Document &d) { d.simplifier.params["measures"] = "persistence,volume"; }), want);
+    EXPECT_EQ(pipeline.latest<Stage::Decomposition>()->simplifier.id, "org.arbor.simplifier.n-measure");
+}
+
+TEST_F(PipelineStages, FilterRedoesTheTreeNeverTheImport)
+{
+    const auto want = only({"filter", "contour_tree", "decomposition", "cut", "labels", "depiction",
+                            "transfer_functions", "render"});
+    EXPECT_EQ(after([](Document &d) { d.filters = {{"gaussian", "", {{"sigma", "2"}}}}; }), want);
+    EXPECT_EQ(after([](Document &d) { d.filters[0].params["sigma"] = "3"; }), want);
+    EXPECT_EQ(after([](Document &d) { d.filters.push_back({"median", "", {}}); }), want);
+    EXPECT_EQ(pipeline.latest<Stage::Filter>()->filters.size(), 2u);
+}
+
+TEST_F(PipelineStages, CameraImageSizeAndRendererParametersRedoTheRenderOnly)
+{
+    const auto want = only({"render"});
+    EXPECT_EQ(after([](Document &d) { d.view.orbit.azimuth = 40; }), want);
+    EXPECT_EQ(after([](Document &d) { d.view.orbit.zoom = 1.5; }), want);
+    EXPECT_EQ(after([](Document &d) { d.view.width = 64; }), want);
+    EXPECT_EQ(after([](Document &d) { d.view.background = {1, 1, 1, 1}; }), want);
+    EXPECT_EQ(after([](Document &d) { d.view.renderer.params["shading"] = "false"; }), want);
+    EXPECT_EQ(pipeline.latest<Stage::Render>()->image.width, 64u);
+}
+
+TEST_F(PipelineStages, InputRedoesEverything)
+{
+    auto want = only({"import", "filter", "contour_tree", "decomposition", "cut", "labels", "depiction",
+                      "transfer_functions", "render"});
+    EXPECT_EQ(after([](Document &d) { d.input.phantom->seed = 2; }), want);
+}
+
+TEST_F(PipelineStages, TheLegendFollowsTheCutAndTheLookOnly)
+{
+    pipeline.run<Stage::Legend>();
+    base = runs(pipeline);
+    const auto legend_after = [&](auto change) {
+        Document d = pipeline.document();
+        change(d);
+        pipeline.set_document(d);
+        pipeline.run<Stage::Legend>();
+        auto out = reruns(base, pipeline);
+        base = runs(pipeline);
+        return out;
+    };
+    EXPECT_EQ(legend_after([](Document &d) { d.view.orbit.azimuth = 90; }), only({}));
+    EXPECT_EQ(legend_after([](Document &d) { d.appearance.selected = 1; }), only({"legend"}));
+    EXPECT_EQ(legend_after([](Document &d) { d.cut.keep = 6; }), only({"cut", "legend"}));
+    const auto legend = pipeline.latest<Stage::Legend>();
+    EXPECT_EQ(legend->selected, 1u);
+    EXPECT_EQ(legend->rgba.size(), std::size_t{512} * 512 * 4);
+}
+
+TEST_F(PipelineStages, ResultsAreSnapshotsThatOutliveTheirSuccessors)
+{
+    const RenderedImage copy = first->image;
+    after([](Document &d) { d.view.orbit.azimuth = 120; });
+    after([](Document &d) { d.input.phantom->seed = 3; });
+    EXPECT_EQ(first->image.rgba, copy.rgba); // still whole, untouched
+    EXPECT_NE(pipeline.latest<Stage::Render>()->image.rgba, copy.rgba);
+}
+
+TEST(Pipeline, BadChoicesAreRefusedAndLeaveTheDocumentAsItWas)
+{
+    Pipeline p(test::built_plugins());
+    const Document good = phantom_document();
+    p.set_document(good);
+    const Document resolved = p.document();
+    const auto revisions = p.revisions();
+    const auto refused = [&](auto change, const char *words) {
+        Document d = good;
+        change(d);
+        try {
+            p.set_document(d);
+            ADD_FAILURE() << "accepted: " << words;
+        } catch (const std::invalid_argument &e) {
+            EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+        }
+        EXPECT_EQ(p.document(), resolved);
+        EXPECT_EQ(p.revisions(), revisions);
+    };
+    refused([](Document &d) { d.simplifier.id = "no-such-simplifier"; }, "no simplifier 'no-such-simplifier'");
+    refused([](Document &d) { d.appearance.generator.params["flow-rate"] = "-5"; }, "flow-rate");
+    refused([](Document &d) { d.appearance.generator.params["shape"] = "spiral"; }, "spiral");
+    refused([](Document &d) { d.appearance.generator.params["no-such"] = "1"; }, "has no parameter 'no-such'");
+    refused([](Document &d) { d.filters = {{"gaussian", "", {{"sigma", "lots"}}}}; }, "lots");
+    refused([](Document &d) { d.view.renderer = {}; }, "no renderer");
+    try {
+        Document d = good;
+        d.appearance.generator.params["flow-rate"] = "-5";
+        p.set_document(d);
+    } catch (const SettingError &e) {
+        EXPECT_EQ(e.plugin_id, "org.arbor.tf.residue-flow");
+        EXPECT_EQ(e.param_id, "flow-rate");
+    }
+}
+
+TEST(Pipeline, ResolvedSettingsCarryTheFullIdTheVersionAndEveryParameter)
+{
+    Pipeline p(test::built_plugins());
+    Document d = phantom_document();
+    d.appearance.generator.params = {{"flow-rate", "30"}};
+    p.set_document(d);
+    const PluginSetting g = p.document().appearance.generator;
+    EXPECT_EQ(g.id, "org.arbor.tf.residue-flow");
+    EXPECT_FALSE(g.version.empty());
+    EXPECT_EQ(g.params.at("flow-rate"), "30");
+    EXPECT_EQ(g.params.at("shape"), "ramp"); // a default, written out
+    EXPECT_GE(g.params.size(), 10u);
+}
+
+TEST(Pipeline, AnErrorUpstreamIsTheErrorOfEveryStageDownstream)
+{
+    Pipeline p(test::built_plugins());
+    Document d = phantom_document();
+    d.input.phantom.reset();
+    d.input.path = test::scratch_dir() / "nothing-here.nrrd";
+    p.set_document(d);
+    const std::shared_ptr<Job> job = p.request(Stage::Render);
+    EXPECT_THROW(job->wait(), std::exception);
+    EXPECT_EQ(job->state(), JobState::Failed);
+    EXPECT_NE(job->error().find("nothing-here.nrrd"), std::string::npos) << job->error();
+    EXPECT_FALSE(p.is_current(Stage::Import));
+}
+
+TEST(Pipeline, ASelectionOutsideTheTreeIsRefusedByName)
+{
+    Pipeline p(test::built_plugins());
+    Document d = phantom_document();
+    d.appearance.selected = 40;
+    p.set_document(d);
+    try {
+        p.run<Stage::Render>();
+        ADD_FAILURE() << "rendered";
+    } catch (const std::invalid_argument &e) {
+        EXPECT_NE(std::string(e.what()).find("selected branch 40"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Pipeline, RequestsForTheSameInputsShareOneJob)
+{
+    Pipeline p(test::built_plugins());
+    p.set_document(phantom_document(64, 6));
+    const std::shared_ptr<Job> a = p.request(Stage::ContourTree);
+    const std::shared_ptr<Job> b = p.request(Stage::ContourTree);
+    EXPECT_EQ(a, b);
+    b->wait();
+    EXPECT_EQ(p.stage_runs()[index_of(Stage::ContourTree)], 1u);
+    // Once finished, it is served from the stage's result.
+    const std::shared_ptr<Job> c = p.request(Stage::ContourTree);
+    EXPECT_EQ(c->state(), JobState::Done);
+    EXPECT_EQ(c->wait(), b->wait());
+}
+
+// Waits until `job` runs (not merely waits for its upstream).
+void wait_running(const Job &job)
+{
+    for (int i = 0; i < 4000 && job.state() == JobState::Waiting; ++i)
+        std::this_thread::sleep_for(5ms);
+    ASSERT_EQ(job.state(), JobState::Running);
+}
+
+// The built plugins plus org.arbor.test.gate, a filter that runs until it is
+// cancelled: a job sure to be running while the test does something else.
+const PluginRegistry &plugins_with_gate()
+{
+    static const std::unique_ptr<PluginRegistry> registry = [] {
+        auto r = std::make_unique<PluginRegistry>();
+        r->load_directories({test::plugin_dir(), std::filesystem::path(ARBOR_FIXTURE_PLUGIN_DIR) / "fixture-gate"});
+        return r;
+    }();
+    return *registry;
+}
+
+const PluginSetting kGate{"org.arbor.test.gate", "", {}};
+
+// Cancels `job` and checks it ends promptly as cancelled.
+void cancel_and_expect_cancelled(Job &job)
+{
+    const auto at = std::chrono::steady_clock::now();
+    job.cancel();
+    EXPECT_THROW(job.wait(), Cancelled);
+    EXPECT_EQ(job.state(), JobState::Cancelled);
+    EXPECT_LT(std::chrono::steady_clock::now() - at, 2s) << stage_name(job.stage()) << " did not see the stop request";
+}
+
+TEST(PipelineJobs, CancellingOneJobLeavesTheOthersRunning)
+{
+    Pipeline p(plugins_with_gate());
+    const Document d = phantom_document(40, 4);
+    p.set_document(d);
+    p.run<Stage::TransferFunctions>();
+    p.run<Stage::Labels>();
+    const std::shared_ptr<Job> render = p.request(Stage::Render);
+
+    // Meanwhile the user tries a filter (one that runs until cancelled): its
+    // job runs beside the render, and the tree job waits for it.
+    Document filtered = d;
+    filtered.filters = {kGate};
+    p.set_document(filtered);
+    const std::shared_ptr<Job> tree = p.request(Stage::ContourTree);
+    std::shared_ptr<Job> gate;
+    for (const std::shared_ptr<Job> &j : p.active_jobs())
+        if (j->stage() == Stage::Filter)
+            gate = j;
+    ASSERT_TRUE(gate);
+    wait_running(*gate);
+
+    // The render finishes while the filter runs, with the image of the
+    // document it was asked for.
+    const auto image = std::static_pointer_cast<const RenderResult>(render->wait());
+    EXPECT_EQ(render->state(), JobState::Done);
+    EXPECT_EQ(gate->state(), JobState::Running);
+    Pipeline fresh(test::built_plugins());
+    fresh.set_document(d);
+    EXPECT_EQ(fresh.run<Stage::Render>()->image.rgba, image->image.rgba);
+
+    // Cancelling the tree job leaves the filter job it waits for running.
+    cancel_and_expect_cancelled(*tree);
+    std::this_thread::sleep_for(50ms);
+    EXPECT_EQ(gate->state(), JobState::Running);
+    cancel_and_expect_cancelled(*gate);
+    EXPECT_EQ(p.stage_runs()[index_of(Stage::ContourTree)], 1u);
+}
+
+TEST(PipelineJobs, CancellingADownstreamJobLeavesItsUpstreamRunning)
+{
+    Pipeline p(plugins_with_gate());
+    Document d = phantom_document(24, 2);
+    d.filters = {kGate};
+    p.set_document(d);
+    const std::shared_ptr<Job> render = p.request(Stage::Render);
+    const std::shared_ptr<Job> gate = p.request(Stage::Filter); // the running one, joined
+    wait_running(*gate);
+    EXPECT_EQ(render->state(), JobState::Waiting);
+    cancel_and_expect_cancelled(*render);
+    EXPECT_EQ(gate->state(), JobState::Running);
+    cancel_and_expect_cancelled(*gate);
+}
+
+TEST(PipelineJobs, ANewerRequestForAStageCancelsTheOlderOne)
+{
+    Pipeline p(plugins_with_gate());
+    Document d = phantom_document(24, 2);
+    d.filters = {kGate};
+    p.set_document(d);
+    const std::shared_ptr<Job> older_tree = p.request(Stage::ContourTree);
+    const std::shared_ptr<Job> older_gate = p.request(Stage::Filter);
+    wait_running(*older_gate);
+    d.filters = {kGate, kGate};
+    p.set_document(d);
+    const std::shared_ptr<Job> newer_tree = p.request(Stage::ContourTree);
+    EXPECT_NE(newer_tree, older_tree);
+    EXPECT_THROW(older_tree->wait(), Cancelled);
+    EXPECT_THROW(older_gate->wait(), Cancelled);
+    const std::shared_ptr<Job> newer_gate = p.request(Stage::Filter);
+    EXPECT_NE(newer_gate, older_gate);
+    wait_running(*newer_gate); // it had to wait for the older one to let go of the filter instance
+    EXPECT_EQ(newer_tree->state(), JobState::Waiting);
+    // The user goes back to no filter: the newest request wins again.
+    d.filters.clear();
+    p.set_document(d);
+    EXPECT_EQ(p.run<Stage::ContourTree>()->tree.vertex_arc.size(), std::size_t{24} * 24 * 24);
+    EXPECT_THROW(newer_tree->wait(), Cancelled);
+    EXPECT_THROW(newer_gate->wait(), Cancelled);
+    EXPECT_TRUE(p.is_current(Stage::ContourTree));
+}
+
+TEST(PipelineJobs, ANewerRenderSupersedesTheOlderAndIsTheLatest)
+{
+    Pipeline p(test::built_plugins());
+    Document d = phantom_document(40, 4);
+    p.set_document(d);
+    const std::shared_ptr<Job> older = p.request(Stage::Render);
+    d.view.orbit.azimuth = 45;
+    d.view.width = 64;
+    p.set_document(d);
+    const std::shared_ptr<Job> newer = p.request(Stage::Render);
+    newer->wait();
+    older->wait_for(10s);
+    // Whether the older one was cancelled or had finished, the newer is the latest.
+    EXPECT_TRUE(older->state() == JobState::Cancelled || older->state() == JobState::Done);
+    EXPECT_EQ(p.latest<Stage::Render>()->image.width, 64u);
+    EXPECT_TRUE(p.is_current(Stage::Render));
+}
+
+TEST(PipelineJobs, CancelAllStopsEveryJobAndTheNextRequestStartsAfresh)
+{
+    Pipeline p(plugins_with_gate());
+    Document d = phantom_document(24, 2);
+    d.filters = {kGate};
+    p.set_document(d);
+    const std::shared_ptr<Job> render = p.request(Stage::Render);
+    wait_running(*p.request(Stage::Filter));
+    EXPECT_EQ(p.active_jobs().size(), 8u); // filter .. render
+    p.cancel_all();
+    EXPECT_THROW(render->wait(), Cancelled);
+    for (int i = 0; i < 200 && !p.active_jobs().empty(); ++i)
+        std::this_thread::sleep_for(5ms);
+    EXPECT_TRUE(p.active_jobs().empty());
+    d.filters.clear();
+    p.set_document(d);
+    EXPECT_EQ(p.run<Stage::Render>()->image.width, 48u);
+}
+
+TEST(PipelineJobs, DestroyingAPipelineCancelsItsJobs)
+{
+    std::shared_ptr<Job> gate;
+    {
+        Pipeline p(plugins_with_gate());
+        Document d = phantom_document(24, 2);
+        d.filters = {kGate};
+        p.set_document(d);
+        p.request(Stage::Render);
+        gate = p.request(Stage::Filter);
+        wait_running(*gate);
+    } // would never return if the gate were not cancelled
+    EXPECT_EQ(gate->state(), JobState::Cancelled);
+}
+
+TEST(Pipeline, JobsReportProgressAndKeepTheirLog)
+{
+    Pipeline p(test::built_plugins());
+    p.set_document(phantom_document(64, 4));
+    const std::shared_ptr<Job> tree = p.request(Stage::ContourTree);
+    tree->wait();
+    EXPECT_EQ(tree->fraction(), 1.0);
+    EXPECT_FALSE(tree->activity().empty());
+}
+
+TEST(PipelineTreeCache, ASecondPipelineReadsTheTreeTheFirstComputed)
+{
+    PipelineOptions options;
+    options.tree_cache_folder = test::scratch_dir() / "cache";
+    const Document d = phantom_document(48, 5);
+    std::shared_ptr<const ContourTreeResult> computed;
+    {
+        Pipeline p(test::built_plugins(), options);
+        p.set_document(d);
+        computed = p.run<Stage::ContourTree>();
+        EXPECT_FALSE(computed->from_cache);
+    }
+    Pipeline p(test::built_plugins(), options);
+    p.set_document(d);
+    const auto read = p.run<Stage::ContourTree>();
+    EXPECT_TRUE(read->from_cache);
+    EXPECT_EQ(std::vector<uint32_t>(read->tree.node_vertex.begin(), read->tree.node_vertex.end()),
+              std::vector<uint32_t>(computed->tree.node_vertex.begin(), computed->tree.node_vertex.end()));
+    EXPECT_EQ(0, std::memcmp(read->tree.vertex_arc.data(), computed->tree.vertex_arc.data(),
+                             computed->tree.vertex_arc.size() * sizeof(uint32_t)));
+    // The same image from either tree.
+    Pipeline q(test::built_plugins());
+    q.set_document(d);
+    EXPECT_EQ(p.run<Stage::Render>()->image.rgba, q.run<Stage::Render>()->image.rgba);
+}
+
+TEST(PipelineTreeCache, ADamagedEntryIsRecomputedWithAWarning)
+{
+    PipelineOptions options;
+    options.tree_cache_folder = test::scratch_dir() / "cache";
+    const Document d = phantom_document(40, 5);
+    {
+        Pipeline p(test::built_plugins(), options);
+        p.set_document(d);
+        p.run<Stage::ContourTree>();
+    }
+    std::filesystem::path entry;
+    for (const auto &e : std::filesystem::directory_iterator(options.tree_cache_folder))
+        entry = e.path();
+    ASSERT_FALSE(entry.empty());
+    std::filesystem::resize_file(entry, std::filesystem::file_size(entry) / 2);
+
+    Pipeline p(test::built_plugins(), options);
+    p.set_document(d);
+    const std::shared_ptr<Job> job = p.request(Stage::ContourTree);
+    const auto r = std::static_pointer_cast<const ContourTreeResult>(job->wait());
+    EXPECT_FALSE(r->from_cache);
+    bool warned = false;
+    for (const LogEntry &e : job->log())
+        warned |= e.level == ARBOR_LOG_WARNING && e.message.find("computing the tree again") != std::string::npos;
+    EXPECT_TRUE(warned);
+    // ... and stored whole again.
+    Pipeline again(test::built_plugins(), options);
+    again.set_document(d);
+    EXPECT_TRUE(again.run<Stage::ContourTree>()->from_cache);
+}
+
+} // namespace
+} // namespace arbor::pipeline
