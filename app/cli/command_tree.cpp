@@ -2,8 +2,8 @@
 // its persistence branch decomposition with every branch's measures; with
 // --keep/--threshold also the simplified hierarchy and its voxel labels.
 #include "commands.hpp"
-#include "branch_json.hpp"
-#include "label_map_output.hpp"
+#include "io/topology_json.hpp"
+#include "io/label_map_output.hpp"
 #include "simplification_run.hpp"
 #include "topology_run.hpp"
 #include "filter_input.hpp"
@@ -37,7 +37,7 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
     const topology::BranchDecomposition &d = topo.branches;
     const Volume &vol = in.volume;
     AtomicFile file(path);
-    JsonStream j(file);
+    io::JsonStream j(file);
     j.raw("{\n");
     j.key("format");
     j.string("arbor-contour-tree/1");
@@ -71,7 +71,7 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
         j.key("kind");
         j.string(topology::node_kind_name(t.node_kind[x]));
         j.raw(",");
-        write_vertex_fields(j, vol, t.node_vertex[x]);
+        io::write_vertex_fields(j, vol, t.node_vertex[x]);
         j.raw(",");
         j.key("branch");
         j.number(d.node_branch[x]);
@@ -117,7 +117,7 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
         j.number(static_cast<double>(b));
         j.raw(",");
         j.key("kind");
-        j.string(branch_kind_name(br.kind));
+        j.string(io::branch_kind_name(br.kind));
         j.raw(",");
         j.key("parent");
         j.number(br.parent);
@@ -133,7 +133,7 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
             j.number(c);
         }
         j.raw("],");
-        write_branch_ends_and_measures(j, t, vol, d, static_cast<uint32_t>(b));
+        io::write_branch_ends_and_measures(j, t, vol, d, static_cast<uint32_t>(b));
         j.raw(",");
         j.key("importance");
         j.number(std::isinf(br.importance) ? 1.0 : br.importance);
@@ -210,9 +210,9 @@ void add_tree_command(CLI::App &app, Context &context)
             cut = topology::cut_by_threshold(topo.branches, *a->cut.threshold);
         write_json(a->json, in, topo, cut ? &*cut : nullptr);
         if (cut && !a->labels.empty())
-            write_label_map(a->labels, in.volume.geometry(), "arbor branch labels of " + in.source,
-                            topology::label_voxels(topo.tree, topo.branches, *cut),
-                            kept_label_names(topo.branches, *cut));
+            io::write_label_map(a->labels, in.volume.geometry(), "arbor branch labels of " + in.source,
+                                topology::label_voxels(topo.tree, topo.branches, *cut),
+                                kept_label_names(topo.branches, *cut));
         std::printf("%s: %zu nodes, %zu arcs, %zu branches%s -> %s\n", in.source.c_str(),
                     topo.tree.node_count(), topo.tree.arc_count(), topo.branches.branches.size(),
                     cut ? (", " + std::to_string(cut->kept.size()) + " kept").c_str() : "", a->json.c_str());

@@ -1,6 +1,6 @@
 #include "comparison_report.hpp"
 
-#include "branch_json.hpp"
+#include "io/topology_json.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -46,14 +46,14 @@ void write_report_json(const std::filesystem::path &path, const ComparisonStudy 
 {
     const topology::TopologyResult &topo = *study.topology;
     AtomicFile file(path);
-    JsonStream j(file);
+    io::JsonStream j(file);
     j.raw("{\n");
     j.key("format");
     j.string("arbor-comparison/1");
     j.raw(",\n");
-    write_volume_summary(j, study.source, study.volume->geometry());
+    io::write_volume_summary(j, study.source, study.volume->geometry());
     j.raw(",\n");
-    write_contour_tree_summary(j, topo.tree, topo.total_seconds);
+    io::write_contour_tree_summary(j, topo.tree, topo.total_seconds);
     j.raw(",\n");
     write_cut(j, study.request);
     j.raw(",\n");
@@ -171,7 +171,7 @@ void write_report_csv(const std::filesystem::path &path, const ComparisonStudy &
             const auto pos = study.volume->geometry().position_of(ext);
             std::ostringstream row;
             row.precision(10);
-            row << csv_text(c.run.id) << ',' << k << ',' << b << ',' << branch_kind_name(br.kind) << ','
+            row << csv_text(c.run.id) << ',' << k << ',' << b << ',' << io::branch_kind_name(br.kind) << ','
                 << (std::isinf(br.importance) ? 1.0 : br.importance) << ',' << ext << ',' << pos[0] << ',' << pos[1]
                 << ',' << pos[2] << ',' << study.volume->value(ext) << ','
                 << study.volume->value(tree.node_vertex[br.saddle_node]);
@@ -232,7 +232,7 @@ void write_report_markdown(const std::filesystem::path &path, const ComparisonSt
             const topology::Branch &br = kept_branch(c, k);
             const uint32_t ext = tree.node_vertex[br.extremum_node];
             const auto pos = g.position_of(ext);
-            md << "| " << k << " | " << branch_kind_name(br.kind) << " | (" << fixed(pos[0], 1) << ", "
+            md << "| " << k << " | " << io::branch_kind_name(br.kind) << " | (" << fixed(pos[0], 1) << ", "
                << fixed(pos[1], 1) << ", " << fixed(pos[2], 1) << ") | " << general(study.volume->value(ext))
                << " | " << general(br.measures[topology::kPersistence]) << " | "
                << general(br.measures[topology::kVolumeMm3]) << " | "

@@ -1,6 +1,6 @@
 #include "simplification_run.hpp"
 
-#include "branch_json.hpp"
+#include "io/topology_json.hpp"
 
 #include "host/simplifier_importance.hpp"
 
@@ -49,7 +49,7 @@ void add_cut_options(CLI::App &command, CutRequest &cut, const std::string &thre
     keep->excludes(threshold);
 }
 
-void write_cut(JsonStream &j, const CutRequest &cut)
+void write_cut(io::JsonStream &j, const CutRequest &cut)
 {
     j.key("cut");
     j.raw("{");
@@ -113,7 +113,7 @@ std::vector<uint32_t> kept_depths(const topology::SimplificationCut &cut)
     return depth;
 }
 
-void write_simplifier_fields(JsonStream &j, const SimplifiedTree &s)
+void write_simplifier_fields(io::JsonStream &j, const SimplifiedTree &s)
 {
     j.key("id");
     j.string(s.id);
@@ -125,7 +125,7 @@ void write_simplifier_fields(JsonStream &j, const SimplifiedTree &s)
     j.string(s.version);
 }
 
-void write_kept_branches(JsonStream &j, const topology::ContourTree &tree, const Volume &volume,
+void write_kept_branches(io::JsonStream &j, const topology::ContourTree &tree, const Volume &volume,
                          const SimplifiedTree &s)
 {
     const topology::BranchDecomposition &d = s.branches;
@@ -145,7 +145,7 @@ void write_kept_branches(JsonStream &j, const topology::ContourTree &tree, const
         j.number(s.cut.kept_parent[k]);
         j.raw(",");
         j.key("kind");
-        j.string(branch_kind_name(br.kind));
+        j.string(io::branch_kind_name(br.kind));
         j.raw(",");
         j.key("depth");
         j.number(depth[k]);
@@ -153,7 +153,7 @@ void write_kept_branches(JsonStream &j, const topology::ContourTree &tree, const
         j.key("importance");
         j.number(std::isinf(br.importance) ? 1.0 : br.importance);
         j.raw(",");
-        write_branch_ends_and_measures(j, tree, volume, d, b);
+        io::write_branch_ends_and_measures(j, tree, volume, d, b);
         j.raw("}");
     }
     j.raw("\n]");

@@ -22,7 +22,7 @@ const char *role_name(arbor_branch_role r)
     }
 }
 
-void write_plugin(JsonStream &j, const PluginInstance &p)
+void write_plugin(io::JsonStream &j, const PluginInstance &p)
 {
     j.raw("{");
     j.key("id");
@@ -44,7 +44,7 @@ void write_plugin(JsonStream &j, const PluginInstance &p)
     j.raw("}}");
 }
 
-void write_rgba(JsonStream &j, const float *c)
+void write_rgba(io::JsonStream &j, const float *c)
 {
     j.raw("[");
     for (int k = 0; k < 4; ++k) {
@@ -62,7 +62,7 @@ void write_transfer_functions(const std::string &path, const TransferFunctionFil
     const TransferFunctions &tf = *f.functions;
     const arbor_branch_tree &tree = *f.tree;
     AtomicFile file(path);
-    JsonStream j(file);
+    io::JsonStream j(file);
     j.raw("{\n");
     j.key("format");
     j.string("arbor-transfer-functions/1");

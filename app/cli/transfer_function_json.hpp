@@ -6,7 +6,7 @@
 // its cut.
 #pragma once
 
-#include "json_stream.hpp"
+#include "io/json_stream.hpp"
 
 #include "host/plugin_instance.hpp"
 #include "host/tf_generation.hpp"

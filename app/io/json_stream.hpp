@@ -13,7 +13,7 @@
 #include <cstdio>
 #include <string>
 
-namespace arbor::cli {
+namespace arbor::io {
 
 class JsonStream {
 public:
@@ -53,4 +53,4 @@ private:
     AtomicFile &out_;
 };
 
-} // namespace arbor::cli
+} // namespace arbor::io

@@ -1,6 +1,6 @@
-#include "branch_json.hpp"
+#include "topology_json.hpp"
 
-namespace arbor::cli {
+namespace arbor::io {
 
 std::array<double, 3> voxel_ijk(const Geometry &g, uint32_t v)
 {
@@ -116,4 +116,4 @@ void write_volume_summary(JsonStream &j, const std::string &source, const Geomet
     j.raw("}");
 }
 
-} // namespace arbor::cli
+} // namespace arbor::io

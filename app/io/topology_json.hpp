@@ -1,6 +1,7 @@
-// branch_json.hpp - the JSON pieces every topology output shares: points of
-// the contour tree (vertex, ijk, LPS mm, value), measure objects and branch
-// kinds, written through a JsonStream.
+// topology_json.hpp - the JSON pieces the topology outputs share (tree,
+// simplification, comparison reports): points of the contour tree (vertex,
+// ijk, LPS mm, value), measure objects, branch kinds and the volume and
+// contour-tree summaries, written through a JsonStream.
 #pragma once
 
 #include "json_stream.hpp"
@@ -13,7 +14,7 @@
 #include <optional>
 #include <string>
 
-namespace arbor::cli {
+namespace arbor::io {
 
 // Voxel indices (i, j, k) of vertex v.
 std::array<double, 3> voxel_ijk(const Geometry &g, uint32_t v);
@@ -40,4 +41,4 @@ void write_contour_tree_summary(JsonStream &j, const topology::ContourTree &tree
 // "volume": {"source", "dims", "spacing_mm"}.
 void write_volume_summary(JsonStream &j, const std::string &source, const Geometry &g);
 
-} // namespace arbor::cli
+} // namespace arbor::io
