@@ -6,7 +6,6 @@
 // paying off, where noise is gone but structures are not yet melting.
 #include "commands.hpp"
 #include "plugin_choice.hpp"
-#include "io/png_output.hpp"
 #include "topology_run.hpp"
 #include "volume_input.hpp"
 
@@ -14,6 +13,7 @@
 #include "core/stopwatch.hpp"
 #include "host/filter_run.hpp"
 #include "host/param_text.hpp"
+#include "io/png_output.hpp"
 
 #include <opencv2/imgproc.hpp>
 

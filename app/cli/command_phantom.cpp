@@ -1,7 +1,7 @@
 // `arbor phantom`: write a built-in synthetic volume to a NRRD file.
 #include "commands.hpp"
-#include "io/label_map_output.hpp"
 
+#include "io/label_map_output.hpp"
 #include "io/nrrd_writer.hpp"
 #include "io/phantom.hpp"
 

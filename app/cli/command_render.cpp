@@ -4,13 +4,14 @@
 // against the file's branches, so functions made for another volume or
 // another simplification are refused instead of misapplied.
 #include "commands.hpp"
-#include "io/image_output.hpp"
 #include "render_options.hpp"
 #include "simplification_run.hpp"
 #include "topology_run.hpp"
 #include "transfer_function_json.hpp"
 #include "filter_input.hpp"
 #include "volume_input.hpp"
+
+#include "io/image_output.hpp"
 
 #include <cstdio>
 #include <memory>

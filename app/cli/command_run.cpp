@@ -4,8 +4,6 @@
 // functions with the inclusion depiction, label-aware rendering; then the
 // image, the relation-wheel legend and a report that makes it reproducible.
 #include "commands.hpp"
-#include "io/image_output.hpp"
-#include "io/png_output.hpp"
 #include "render_options.hpp"
 #include "run_report.hpp"
 #include "simplification_run.hpp"
@@ -15,6 +13,8 @@
 #include "volume_input.hpp"
 
 #include "core/stopwatch.hpp"
+#include "io/image_output.hpp"
+#include "io/png_output.hpp"
 #include "topology/importance_knee.hpp"
 
 #include <cstdio>

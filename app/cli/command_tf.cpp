@@ -4,13 +4,14 @@
 // generator (residue flow by default) writes one transfer function per kept
 // branch.  The generator sees the branch tree only.
 #include "commands.hpp"
-#include "io/png_output.hpp"
 #include "simplification_run.hpp"
 #include "topology_run.hpp"
 #include "transfer_function_json.hpp"
 #include "transfer_function_stage.hpp"
 #include "filter_input.hpp"
 #include "volume_input.hpp"
+
+#include "io/png_output.hpp"
 
 #include <cstdio>
 #include <memory>

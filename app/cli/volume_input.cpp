@@ -1,8 +1,8 @@
 #include "volume_input.hpp"
 
-#include "io/phantom.hpp"
 #include "host/param_text.hpp"
 #include "host/volume_import.hpp"
+#include "io/phantom.hpp"
 
 #include <stdexcept>
 

@@ -2,64 +2,42 @@
 
 namespace arbor::io {
 
-std::array<double, 3> voxel_ijk(const Geometry &g, uint32_t v)
+std::array<int64_t, 3> voxel_ijk(const Geometry &g, uint32_t v)
 {
-    return {static_cast<double>(v % g.dims[0]), static_cast<double>((v / g.dims[0]) % g.dims[1]),
-            static_cast<double>(v / (g.dims[0] * g.dims[1]))};
+    return {v % g.dims[0], (v / g.dims[0]) % g.dims[1], v / (g.dims[0] * g.dims[1])};
 }
 
-void write_tree_point(JsonStream &j, const topology::ContourTree &t, const Volume &vol, uint32_t node)
+void write_vertex_fields(JsonWriter &j, const Volume &vol, uint32_t v)
 {
-    j.raw("{");
-    j.key("node");
-    j.number(node);
-    j.raw(",");
+    j.field("vertex", v);
+    j.field("ijk", voxel_ijk(vol.geometry(), v));
+    j.field("position_mm", vol.geometry().position_of(v));
+    j.field("value", vol.value(v));
+}
+
+void write_tree_point(JsonWriter &j, std::string_view key, const topology::ContourTree &t, const Volume &vol,
+                      uint32_t node)
+{
+    const JsonWriter::Scope point = j.object(key);
+    j.field("node", node);
     write_vertex_fields(j, vol, t.node_vertex[node]);
-    j.raw("}");
 }
 
-void write_vertex_fields(JsonStream &j, const Volume &vol, uint32_t v)
-{
-    j.key("vertex");
-    j.number(v);
-    j.raw(",");
-    j.key("ijk");
-    j.triple(voxel_ijk(vol.geometry(), v));
-    j.raw(",");
-    j.key("position_mm");
-    j.triple(vol.geometry().position_of(v));
-    j.raw(",");
-    j.key("value");
-    j.number(vol.value(v));
-}
-
-void write_branch_ends_and_measures(JsonStream &j, const topology::ContourTree &t, const Volume &vol,
+void write_branch_ends_and_measures(JsonWriter &j, const topology::ContourTree &t, const Volume &vol,
                                     const topology::BranchDecomposition &d, uint32_t branch)
 {
     const topology::Branch &br = d.branches[branch];
-    j.key("extremum");
-    write_tree_point(j, t, vol, br.extremum_node);
-    j.raw(",");
-    j.key("saddle");
-    write_tree_point(j, t, vol, br.saddle_node);
-    j.raw(",");
-    j.key("measures");
-    write_measures(j, br.measures);
-    j.raw(",");
-    j.key("relative_measures");
-    write_relative_measures(j, d, branch);
+    write_tree_point(j, "extremum", t, vol, br.extremum_node);
+    write_tree_point(j, "saddle", t, vol, br.saddle_node);
+    write_measures(j, "measures", br.measures);
+    write_relative_measures(j, "relative_measures", d, branch);
 }
 
-void write_measures(JsonStream &j, const std::array<double, topology::kMeasureCount> &m)
+void write_measures(JsonWriter &j, std::string_view key, const std::array<double, topology::kMeasureCount> &m)
 {
-    j.raw("{");
-    for (int i = 0; i < topology::kMeasureCount; ++i) {
-        if (i)
-            j.raw(",");
-        j.key(topology::measure_id(i));
-        j.number(m[static_cast<std::size_t>(i)]);
-    }
-    j.raw("}");
+    const JsonWriter::Scope measures = j.object(key);
+    for (int i = 0; i < topology::kMeasureCount; ++i)
+        j.field(topology::measure_id(i), m[static_cast<std::size_t>(i)]);
 }
 
 const char *branch_kind_name(topology::BranchKind k)
@@ -72,48 +50,32 @@ const char *branch_kind_name(topology::BranchKind k)
     return "?";
 }
 
-void write_relative_measures(JsonStream &j, const topology::BranchDecomposition &d, uint32_t branch)
+void write_relative_measures(JsonWriter &j, std::string_view key, const topology::BranchDecomposition &d,
+                             uint32_t branch)
 {
     std::array<double, topology::kMeasureCount> relative;
     for (int m = 0; m < topology::kMeasureCount; ++m)
         relative[static_cast<std::size_t>(m)] = d.relative(branch, m);
-    write_measures(j, relative);
+    write_measures(j, key, relative);
 }
 
-void write_contour_tree_summary(JsonStream &j, const topology::ContourTree &tree, double seconds,
+void write_contour_tree_summary(JsonWriter &j, const topology::ContourTree &tree, double seconds,
                                 std::optional<std::size_t> branches)
 {
-    j.key("contour_tree");
-    j.raw("{");
-    j.key("nodes");
-    j.number(static_cast<double>(tree.node_count()));
-    j.raw(",");
-    j.key("arcs");
-    j.number(static_cast<double>(tree.arc_count()));
-    j.raw(",");
-    j.key("seconds");
-    j.number(seconds);
-    if (branches) {
-        j.raw(",");
-        j.key("branches");
-        j.number(static_cast<double>(*branches));
-    }
-    j.raw("}");
+    const JsonWriter::Scope summary = j.object("contour_tree");
+    j.field("nodes", tree.node_count());
+    j.field("arcs", tree.arc_count());
+    j.field("seconds", seconds);
+    if (branches)
+        j.field("branches", *branches);
 }
 
-void write_volume_summary(JsonStream &j, const std::string &source, const Geometry &g)
+void write_volume_summary(JsonWriter &j, const std::string &source, const Geometry &g)
 {
-    j.key("volume");
-    j.raw("{");
-    j.key("source");
-    j.string(source);
-    j.raw(",");
-    j.key("dims");
-    j.triple({static_cast<double>(g.dims[0]), static_cast<double>(g.dims[1]), static_cast<double>(g.dims[2])});
-    j.raw(",");
-    j.key("spacing_mm");
-    j.triple(g.spacing);
-    j.raw("}");
+    const JsonWriter::Scope volume = j.object("volume");
+    j.field("source", source);
+    j.field("dims", g.dims);
+    j.field("spacing_mm", g.spacing);
 }
 
 } // namespace arbor::io
