@@ -4,7 +4,7 @@
 #include "filter_input.hpp"
 #include "volume_input.hpp"
 
-#include "core/nrrd_writer.hpp"
+#include "io/nrrd_writer.hpp"
 
 #include <cstdio>
 #include <memory>
@@ -34,10 +34,10 @@ void add_convert_command(CLI::App &app, Context &context)
     context.add_command(sub, [a, &context]() {
         LoadedVolume in = a->input.load();
         a->filter.apply(in, context);
-        NrrdWriteOptions w;
+        io::NrrdWriteOptions w;
         w.gzip = !a->raw;
         w.content = in.source;
-        write_nrrd(in.volume, a->output, w);
+        io::write_nrrd(in.volume, a->output, w);
         std::printf("wrote %s\n", a->output.c_str());
         return 0;
     });

@@ -6,7 +6,6 @@
 // paying off, where noise is gone but structures are not yet melting.
 #include "commands.hpp"
 #include "plugin_choice.hpp"
-#include "png_output.hpp"
 #include "topology_run.hpp"
 #include "volume_input.hpp"
 
@@ -14,6 +13,7 @@
 #include "core/stopwatch.hpp"
 #include "host/filter_run.hpp"
 #include "host/param_text.hpp"
+#include "io/png_output.hpp"
 
 #include <opencv2/imgproc.hpp>
 
@@ -108,7 +108,7 @@ void plot(const std::filesystem::path &path, const std::vector<StudyPoint> &p, s
     for (std::size_t n = 0; n < 3; ++n)
         cv::putText(m, series[n].name, {w - 140, top + 20 + 20 * static_cast<int>(n)}, cv::FONT_HERSHEY_SIMPLEX, 0.5,
                     series[n].colour, 1, cv::LINE_AA);
-    write_png(path, m);
+    io::write_png(path, m);
 }
 
 } // namespace

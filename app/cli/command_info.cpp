@@ -134,7 +134,7 @@ void add_info_command(CLI::App &app, Context &context)
         const LoadedVolume in = input->load();
         const VolumeStatistics st = compute_statistics(in.volume, 64);
         if (*json)
-            std::cout << to_json(in, st).dump(2) << "\n";
+            std::cout << to_json(in, st).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
         else
             print_text(in, st);
         return 0;

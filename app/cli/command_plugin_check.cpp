@@ -60,7 +60,7 @@ void add_plugin_check_command(CLI::App &app, Context &context)
             std::printf("  %zu checks, %d failed\n", r.checks.size(), r.failures());
         }
         if (a->json)
-            std::cout << all.dump(2) << "\n";
+            std::cout << all.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
         return failures == 0 ? 0 : 1;
     });
 }

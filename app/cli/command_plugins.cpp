@@ -39,7 +39,7 @@ void add_plugins_command(CLI::App &app, Context &context)
             j["refused"] = nlohmann::json::array();
             for (const PluginRefusal &x : r.refusals())
                 j["refused"].push_back({{"library", x.path}, {"plugin", x.plugin_id}, {"reason", x.reason}});
-            std::cout << j.dump(2) << "\n";
+            std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
             return 0;
         }
         std::printf("%-34s %-13s %-8s %s\n", "ID", "KIND", "VERSION", "NAME");

@@ -4,13 +4,14 @@
 // against the file's branches, so functions made for another volume or
 // another simplification are refused instead of misapplied.
 #include "commands.hpp"
-#include "image_output.hpp"
 #include "render_options.hpp"
 #include "simplification_run.hpp"
 #include "topology_run.hpp"
 #include "transfer_function_json.hpp"
 #include "filter_input.hpp"
 #include "volume_input.hpp"
+
+#include "io/image_output.hpp"
 
 #include <cstdio>
 #include <memory>
@@ -58,9 +59,9 @@ void add_render_command(CLI::App &app, Context &context)
                                         " with " + stored.cut + "; regenerate them with `arbor tf`");
         const std::vector<uint32_t> labels = topology::label_voxels(topo.tree, s.branches, s.cut);
         const RenderedImage image = a->render.render(in.volume, labels, *stored.functions, context);
-        write_image(a->output, image);
+        io::write_image(a->output, image);
         std::printf("%s: %zu branches rendered by %s -> %s (%.0f%% covered)\n", in.source.c_str(), n,
-                    a->render.renderer().id().c_str(), a->output.c_str(), 100.0 * covered_fraction(image));
+                    a->render.renderer().id().c_str(), a->output.c_str(), 100.0 * io::covered_fraction(image));
         return 0;
     });
 }

@@ -4,8 +4,6 @@
 // functions with the inclusion depiction, label-aware rendering; then the
 // image, the relation-wheel legend and a report that makes it reproducible.
 #include "commands.hpp"
-#include "image_output.hpp"
-#include "png_output.hpp"
 #include "render_options.hpp"
 #include "run_report.hpp"
 #include "simplification_run.hpp"
@@ -15,6 +13,8 @@
 #include "volume_input.hpp"
 
 #include "core/stopwatch.hpp"
+#include "io/image_output.hpp"
+#include "io/png_output.hpp"
 #include "topology/importance_knee.hpp"
 
 #include <cstdio>
@@ -114,8 +114,8 @@ void add_run_command(CLI::App &app, Context &context)
         PluginInstance &neighbour = a->stage.depictors().resolve("neighbour");
         const cv::Mat legend = a->stage.legend(neighbour, wheel, 512);
 
-        write_image(output, image);
-        write_png(legend_path, legend);
+        io::write_image(output, image);
+        io::write_png(legend_path, legend);
         report.stage("write", clock.lap());
         report.source = in.source;
         report.importer = in.importer_id.empty() ? "" : in.importer_id + " " + in.importer_version;
@@ -130,7 +130,7 @@ void add_run_command(CLI::App &app, Context &context)
         report.orbit = a->render.orbit();
         report.width = image.width;
         report.height = image.height;
-        report.coverage = covered_fraction(image);
+        report.coverage = io::covered_fraction(image);
         report.image = output.string();
         report.legend = legend_path.string();
         report.legend_selected = selected;

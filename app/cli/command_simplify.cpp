@@ -2,14 +2,15 @@
 // --json out.json [--labels labels.nrrd]`: the contour tree simplified by
 // one simplifier plugin, its kept branches with measures and importance,
 // and the voxel -> branch label map.
-#include "branch_json.hpp"
 #include "commands.hpp"
-#include "label_map_output.hpp"
 #include "simplification_run.hpp"
 #include "plugin_choice.hpp"
 #include "topology_run.hpp"
 #include "filter_input.hpp"
 #include "volume_input.hpp"
+
+#include "io/label_map_output.hpp"
+#include "io/topology_json.hpp"
 
 #include <cstdio>
 #include <memory>
@@ -31,34 +32,20 @@ struct SimplifyArgs {
 void write_json(const std::string &path, const LoadedVolume &in, const topology::TopologyResult &topo,
                 const SimplifiedTree &s, const CutRequest &request)
 {
-    AtomicFile file(path);
-    JsonStream j(file);
-    j.raw("{\n");
-    j.key("format");
-    j.string("arbor-simplified-tree/1");
-    j.raw(",\n");
-    write_volume_summary(j, in.source, in.volume.geometry());
-    j.raw(",\n");
-    j.key("simplifier");
-    j.raw("{");
-    write_simplifier_fields(j, s);
-    j.raw("},\n");
-    write_cut(j, request);
-    j.raw(",\n");
-    write_contour_tree_summary(j, topo.tree, topo.total_seconds, s.branches.branches.size());
-    j.raw(",\n");
-    j.key("kept_branches");
-    write_kept_branches(j, topo.tree, in.volume, s);
-    j.raw(",\n");
-    j.key("seconds");
-    j.raw("{");
-    j.key("contour_tree");
-    j.number(topo.total_seconds);
-    j.raw(",");
-    j.key("simplification");
-    j.number(s.seconds);
-    j.raw("}\n}\n");
-    file.commit();
+    io::write_json_file(path, io::JsonLayout::indented, [&](io::JsonWriter &j) {
+        j.field("format", "arbor-simplified-tree/1");
+        io::write_volume_summary(j, in.source, in.volume.geometry());
+        {
+            const io::JsonWriter::Scope simplifier = j.object("simplifier");
+            write_simplifier_fields(j, s);
+        }
+        write_cut(j, request);
+        io::write_contour_tree_summary(j, topo.tree, topo.total_seconds, s.branches.branches.size());
+        write_kept_branches(j, "kept_branches", topo.tree, in.volume, s);
+        const io::JsonWriter::Scope seconds = j.object("seconds");
+        j.field("contour_tree", topo.total_seconds);
+        j.field("simplification", s.seconds);
+    });
 }
 
 } // namespace
@@ -93,8 +80,9 @@ void add_simplify_command(CLI::App &app, Context &context)
         SimplifiedTree s = simplify_tree(topo.tree, in.volume, simplifier, a->cut, context);
         write_json(a->json, in, topo, s, a->cut);
         if (!a->labels.empty())
-            write_label_map(a->labels, in.volume.geometry(), "arbor " + s.id + " labels of " + in.source,
-                            topology::label_voxels(topo.tree, s.branches, s.cut), kept_label_names(s.branches, s.cut));
+            io::write_label_map(a->labels, in.volume.geometry(), "arbor " + s.id + " labels of " + in.source,
+                                topology::label_voxels(topo.tree, s.branches, s.cut),
+                                kept_label_names(s.branches, s.cut));
         std::printf("%s: %zu branches, %zu kept by %s (%s) -> %s\n", in.source.c_str(), s.branches.branches.size(),
                     s.cut.kept.size(), s.id.c_str(), a->cut.describe().c_str(), a->json.c_str());
         if (a->timings) {

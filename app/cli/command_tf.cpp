@@ -4,13 +4,14 @@
 // generator (residue flow by default) writes one transfer function per kept
 // branch.  The generator sees the branch tree only.
 #include "commands.hpp"
-#include "png_output.hpp"
 #include "simplification_run.hpp"
 #include "topology_run.hpp"
 #include "transfer_function_json.hpp"
 #include "transfer_function_stage.hpp"
 #include "filter_input.hpp"
 #include "volume_input.hpp"
+
+#include "io/png_output.hpp"
 
 #include <cstdio>
 #include <memory>
@@ -79,7 +80,7 @@ void add_tf_command(CLI::App &app, Context &context)
         f.functions = r.functions.get();
         write_transfer_functions(a->output, f);
         if (!a->legend.empty())
-            write_png(a->legend, legend);
+            io::write_png(a->legend, legend);
         std::printf("%s: %u branches kept by %s, transfer functions by %s -> %s\n", in.source.c_str(), tree.size(),
                     s.id.c_str(), r.generator->id().c_str(), a->output.c_str());
         if (a->timings)

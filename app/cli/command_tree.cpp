@@ -2,13 +2,13 @@
 // its persistence branch decomposition with every branch's measures; with
 // --keep/--threshold also the simplified hierarchy and its voxel labels.
 #include "commands.hpp"
-#include "branch_json.hpp"
-#include "label_map_output.hpp"
 #include "simplification_run.hpp"
 #include "topology_run.hpp"
 #include "filter_input.hpp"
 #include "volume_input.hpp"
 
+#include "io/label_map_output.hpp"
+#include "io/topology_json.hpp"
 #include "topology/simplification.hpp"
 
 #include <cmath>
@@ -36,152 +36,75 @@ void write_json(const std::string &path, const LoadedVolume &in, const topology:
     const topology::ContourTree &t = topo.tree;
     const topology::BranchDecomposition &d = topo.branches;
     const Volume &vol = in.volume;
-    AtomicFile file(path);
-    JsonStream j(file);
-    j.raw("{\n");
-    j.key("format");
-    j.string("arbor-contour-tree/1");
-    j.raw(",\n");
-    j.key("volume");
-    j.raw("{");
-    j.key("source");
-    j.string(in.source);
-    j.raw(",");
-    j.key("dims");
-    j.triple({static_cast<double>(vol.geometry().dims[0]), static_cast<double>(vol.geometry().dims[1]),
-              static_cast<double>(vol.geometry().dims[2])});
-    j.raw(",");
-    j.key("voxel_type");
-    j.string(arbor_voxel_type_name(vol.type()));
-    j.raw(",");
-    j.key("global_min");
-    j.number(d.global_min);
-    j.raw(",");
-    j.key("global_max");
-    j.number(d.global_max);
-    j.raw("},\n");
-
-    j.key("nodes");
-    j.raw("[\n");
-    for (std::size_t x = 0; x < t.node_count(); ++x) {
-        j.raw(x ? ",\n{" : "{");
-        j.key("id");
-        j.number(static_cast<double>(x));
-        j.raw(",");
-        j.key("kind");
-        j.string(topology::node_kind_name(t.node_kind[x]));
-        j.raw(",");
-        write_vertex_fields(j, vol, t.node_vertex[x]);
-        j.raw(",");
-        j.key("branch");
-        j.number(d.node_branch[x]);
-        j.raw("}");
-    }
-    j.raw("\n],\n");
-
-    std::vector<double> arc_voxels(t.arc_count(), 0.0);
-    for (std::size_t v = 0; v < t.vertex_arc.size(); ++v)
-        if (t.vertex_arc[v] != topology::kNoArc)
-            arc_voxels[t.vertex_arc[v]] += 1.0;
-    for (uint32_t v : t.node_vertex)
-        if (t.vertex_arc[v] != topology::kNoArc)
-            arc_voxels[t.vertex_arc[v]] -= 1.0; // nodes are not interior voxels
-    j.key("arcs");
-    j.raw("[\n");
-    for (std::size_t a = 0; a < t.arc_count(); ++a) {
-        j.raw(a ? ",\n{" : "{");
-        j.key("id");
-        j.number(static_cast<double>(a));
-        j.raw(",");
-        j.key("lower");
-        j.number(t.arc_lo[a]);
-        j.raw(",");
-        j.key("upper");
-        j.number(t.arc_hi[a]);
-        j.raw(",");
-        j.key("interior_voxels");
-        j.number(arc_voxels[a]);
-        j.raw(",");
-        j.key("branch");
-        j.number(d.arc_branch[a]);
-        j.raw("}");
-    }
-    j.raw("\n],\n");
-
-    j.key("branches");
-    j.raw("[\n");
-    for (std::size_t b = 0; b < d.branches.size(); ++b) {
-        const topology::Branch &br = d.branches[b];
-        j.raw(b ? ",\n{" : "{");
-        j.key("id");
-        j.number(static_cast<double>(b));
-        j.raw(",");
-        j.key("kind");
-        j.string(branch_kind_name(br.kind));
-        j.raw(",");
-        j.key("parent");
-        j.number(br.parent);
-        j.raw(",");
-        j.key("depth");
-        j.number(br.depth);
-        j.raw(",");
-        j.key("children");
-        j.raw("[");
-        for (const uint32_t c : d.children(static_cast<uint32_t>(b))) {
-            if (c != d.child_offsets[b])
-                j.raw(",");
-            j.number(c);
+    io::write_json_file(path, io::JsonLayout::compact, [&](io::JsonWriter &j) {
+        j.field("format", "arbor-contour-tree/1");
+        {
+            const io::JsonWriter::Scope volume = j.object("volume");
+            j.field("source", in.source);
+            j.field("dims", vol.geometry().dims);
+            j.field("voxel_type", arbor_voxel_type_name(vol.type()));
+            j.field("global_min", d.global_min);
+            j.field("global_max", d.global_max);
         }
-        j.raw("],");
-        write_branch_ends_and_measures(j, t, vol, d, static_cast<uint32_t>(b));
-        j.raw(",");
-        j.key("importance");
-        j.number(std::isinf(br.importance) ? 1.0 : br.importance);
+        {
+            const io::JsonWriter::Scope nodes = j.array("nodes");
+            for (std::size_t x = 0; x < t.node_count(); ++x) {
+                const io::JsonWriter::Scope node = j.object();
+                j.field("id", x);
+                j.field("kind", topology::node_kind_name(t.node_kind[x]));
+                io::write_vertex_fields(j, vol, t.node_vertex[x]);
+                j.field("branch", d.node_branch[x]);
+            }
+        }
+        std::vector<double> arc_voxels(t.arc_count(), 0.0);
+        for (std::size_t v = 0; v < t.vertex_arc.size(); ++v)
+            if (t.vertex_arc[v] != topology::kNoArc)
+                arc_voxels[t.vertex_arc[v]] += 1.0;
+        for (uint32_t v : t.node_vertex)
+            if (t.vertex_arc[v] != topology::kNoArc)
+                arc_voxels[t.vertex_arc[v]] -= 1.0; // nodes are not interior voxels
+        {
+            const io::JsonWriter::Scope arcs = j.array("arcs");
+            for (std::size_t a = 0; a < t.arc_count(); ++a) {
+                const io::JsonWriter::Scope arc = j.object();
+                j.field("id", a);
+                j.field("lower", t.arc_lo[a]);
+                j.field("upper", t.arc_hi[a]);
+                j.field("interior_voxels", arc_voxels[a]);
+                j.field("branch", d.arc_branch[a]);
+            }
+        }
+        {
+            const io::JsonWriter::Scope branches = j.array("branches");
+            for (std::size_t b = 0; b < d.branches.size(); ++b) {
+                const topology::Branch &br = d.branches[b];
+                const io::JsonWriter::Scope branch = j.object();
+                j.field("id", b);
+                j.field("kind", io::branch_kind_name(br.kind));
+                j.field("parent", br.parent);
+                j.field("depth", br.depth);
+                j.field("children", d.children(static_cast<uint32_t>(b)));
+                io::write_branch_ends_and_measures(j, t, vol, d, static_cast<uint32_t>(b));
+                j.field("importance", std::isinf(br.importance) ? 1.0 : br.importance);
+                if (cut)
+                    j.field("kept", cut->kept_index[b] >= 0);
+            }
+        }
         if (cut) {
-            j.raw(",");
-            j.key("kept");
-            j.raw(cut->kept_index[b] >= 0 ? "true" : "false");
+            const io::JsonWriter::Scope simplified = j.object("simplified");
+            const io::JsonWriter::Scope kept = j.array("kept_branches");
+            for (std::size_t k = 0; k < cut->kept.size(); ++k) {
+                const io::JsonWriter::Scope o = j.object();
+                j.field("label", k);
+                j.field("branch", cut->kept[k]);
+                j.field("parent_label", cut->kept_parent[k]);
+            }
         }
-        j.raw("}");
-    }
-    j.raw("\n]");
-
-    if (cut) {
-        j.raw(",\n");
-        j.key("simplified");
-        j.raw("{");
-        j.key("kept_branches");
-        j.raw("[");
-        for (std::size_t k = 0; k < cut->kept.size(); ++k) {
-            if (k)
-                j.raw(",");
-            j.raw("{");
-            j.key("label");
-            j.number(static_cast<double>(k));
-            j.raw(",");
-            j.key("branch");
-            j.number(cut->kept[k]);
-            j.raw(",");
-            j.key("parent_label");
-            j.number(cut->kept_parent[k]);
-            j.raw("}");
-        }
-        j.raw("]}");
-    }
-    j.raw(",\n");
-    j.key("timings_seconds");
-    j.raw("{");
-    for (std::size_t i = 0; i < topo.timings.size(); ++i) {
-        if (i)
-            j.raw(",");
-        j.key(topo.timings[i].stage.c_str());
-        j.number(topo.timings[i].seconds);
-    }
-    j.raw(",");
-    j.key("total");
-    j.number(topo.total_seconds);
-    j.raw("}\n}\n");
-    file.commit();
+        const io::JsonWriter::Scope timings = j.object("timings_seconds");
+        for (const topology::StageTiming &stage : topo.timings)
+            j.field(stage.stage, stage.seconds);
+        j.field("total", topo.total_seconds);
+    });
 }
 
 } // namespace
@@ -210,9 +133,9 @@ void add_tree_command(CLI::App &app, Context &context)
             cut = topology::cut_by_threshold(topo.branches, *a->cut.threshold);
         write_json(a->json, in, topo, cut ? &*cut : nullptr);
         if (cut && !a->labels.empty())
-            write_label_map(a->labels, in.volume.geometry(), "arbor branch labels of " + in.source,
-                            topology::label_voxels(topo.tree, topo.branches, *cut),
-                            kept_label_names(topo.branches, *cut));
+            io::write_label_map(a->labels, in.volume.geometry(), "arbor branch labels of " + in.source,
+                                topology::label_voxels(topo.tree, topo.branches, *cut),
+                                kept_label_names(topo.branches, *cut));
         std::printf("%s: %zu nodes, %zu arcs, %zu branches%s -> %s\n", in.source.c_str(),
                     topo.tree.node_count(), topo.tree.arc_count(), topo.branches.branches.size(),
                     cut ? (", " + std::to_string(cut->kept.size()) + " kept").c_str() : "", a->json.c_str());

@@ -1,6 +1,6 @@
 #include "comparison_report.hpp"
 
-#include "branch_json.hpp"
+#include "io/topology_json.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -45,110 +45,53 @@ const topology::Branch &kept_branch(const ComparedSimplifier &c, std::size_t lab
 void write_report_json(const std::filesystem::path &path, const ComparisonStudy &study)
 {
     const topology::TopologyResult &topo = *study.topology;
-    AtomicFile file(path);
-    JsonStream j(file);
-    j.raw("{\n");
-    j.key("format");
-    j.string("arbor-comparison/1");
-    j.raw(",\n");
-    write_volume_summary(j, study.source, study.volume->geometry());
-    j.raw(",\n");
-    write_contour_tree_summary(j, topo.tree, topo.total_seconds);
-    j.raw(",\n");
-    write_cut(j, study.request);
-    j.raw(",\n");
-    j.key("simplifiers");
-    j.raw("[");
-    for (std::size_t r = 0; r < study.runs.size(); ++r) {
-        const SimplifiedTree &s = study.runs[r].run;
-        j.raw(r ? ",\n{" : "\n{");
-        write_simplifier_fields(j, s);
-        j.raw(",");
-        j.key("seconds");
-        j.number(s.seconds);
-        j.raw(",");
-        j.key("branches");
-        j.number(static_cast<double>(s.branches.branches.size()));
-        j.raw(",");
-        j.key("kept_count");
-        j.number(static_cast<double>(s.cut.kept.size()));
-        j.raw(",");
-        j.key("kept");
-        write_kept_branches(j, topo.tree, *study.volume, s);
-        j.raw("}");
-    }
-    j.raw("\n],\n");
-    j.key("overlaps");
-    j.raw("[");
-    for (std::size_t i = 0; i < study.overlaps.size(); ++i) {
-        const Overlap &o = study.overlaps[i];
-        j.raw(i ? ",\n{" : "\n{");
-        j.key("a");
-        j.string(study.runs[o.a].run.id);
-        j.raw(",");
-        j.key("b");
-        j.string(study.runs[o.b].run.id);
-        j.raw(",");
-        j.key("shared");
-        j.number(static_cast<double>(o.shared));
-        j.raw(",");
-        j.key("only_a");
-        j.number(static_cast<double>(o.only_a));
-        j.raw(",");
-        j.key("only_b");
-        j.number(static_cast<double>(o.only_b));
-        j.raw(",");
-        j.key("jaccard");
-        j.number(o.jaccard);
-        j.raw("}");
-    }
-    j.raw("\n]");
-    if (!study.truth_source.empty()) {
-        j.raw(",\n");
-        j.key("truth");
-        j.raw("{");
-        j.key("source");
-        j.string(study.truth_source);
-        j.raw(",");
-        j.key("labels");
-        j.raw("[");
-        for (std::size_t t = 0; t < study.truth.size(); ++t) {
-            const TruthScore &score = study.truth[t];
-            j.raw(t ? ",\n{" : "\n{");
-            j.key("label");
-            j.number(score.truth_label);
-            j.raw(",");
-            j.key("voxels");
-            j.number(static_cast<double>(score.voxels));
-            j.raw(",");
-            j.key("dice");
-            j.raw("{");
-            for (std::size_t r = 0; r < study.runs.size(); ++r) {
-                if (r)
-                    j.raw(",");
-                j.key(study.runs[r].run.id.c_str());
-                j.raw("{");
-                j.key("dice");
-                j.number(score.best[r].dice);
-                j.raw(",");
-                j.key("kept_label");
-                j.number(score.best[r].kept_label);
-                j.raw("}");
+    io::write_json_file(path, io::JsonLayout::indented, [&](io::JsonWriter &j) {
+        j.field("format", "arbor-comparison/1");
+        io::write_volume_summary(j, study.source, study.volume->geometry());
+        io::write_contour_tree_summary(j, topo.tree, topo.total_seconds);
+        write_cut(j, study.request);
+        {
+            const io::JsonWriter::Scope simplifiers = j.array("simplifiers");
+            for (const ComparedSimplifier &c : study.runs) {
+                const SimplifiedTree &s = c.run;
+                const io::JsonWriter::Scope o = j.object();
+                write_simplifier_fields(j, s);
+                j.field("seconds", s.seconds);
+                j.field("branches", s.branches.branches.size());
+                j.field("kept_count", s.cut.kept.size());
+                write_kept_branches(j, "kept", topo.tree, *study.volume, s);
             }
-            j.raw("}}");
         }
-        j.raw("\n]}");
-    }
-    j.raw(",\n");
-    j.key("images");
-    j.raw("[");
-    for (std::size_t i = 0; i < study.images.size(); ++i) {
-        if (i)
-            j.raw(",");
-        j.string(study.images[i]);
-    }
-    j.raw("]\n}\n");
-    file.commit();
+        {
+            const io::JsonWriter::Scope overlaps = j.array("overlaps");
+            for (const Overlap &o : study.overlaps) {
+                const io::JsonWriter::Scope pair = j.object();
+                j.field("a", study.runs[o.a].run.id);
+                j.field("b", study.runs[o.b].run.id);
+                j.field("shared", o.shared);
+                j.field("only_a", o.only_a);
+                j.field("only_b", o.only_b);
+                j.field("jaccard", o.jaccard);
+            }
+        }
+        if (!study.truth_source.empty()) {
+            const io::JsonWriter::Scope truth = j.object("truth");
+            j.field("source", study.truth_source);
+            const io::JsonWriter::Scope labels = j.array("labels");
+            for (const TruthScore &score : study.truth) {
+                const io::JsonWriter::Scope label = j.object();
+                j.field("label", score.truth_label);
+                j.field("voxels", score.voxels);
+                const io::JsonWriter::Scope dice = j.object("dice");
+                for (std::size_t r = 0; r < study.runs.size(); ++r) {
+                    const io::JsonWriter::Scope best = j.object(study.runs[r].run.id);
+                    j.field("dice", score.best[r].dice);
+                    j.field("kept_label", score.best[r].kept_label);
+                }
+            }
+        }
+        j.field("images", study.images);
+    });
 }
 
 void write_report_csv(const std::filesystem::path &path, const ComparisonStudy &study)
@@ -171,7 +114,7 @@ void write_report_csv(const std::filesystem::path &path, const ComparisonStudy &
             const auto pos = study.volume->geometry().position_of(ext);
             std::ostringstream row;
             row.precision(10);
-            row << csv_text(c.run.id) << ',' << k << ',' << b << ',' << branch_kind_name(br.kind) << ','
+            row << csv_text(c.run.id) << ',' << k << ',' << b << ',' << io::branch_kind_name(br.kind) << ','
                 << (std::isinf(br.importance) ? 1.0 : br.importance) << ',' << ext << ',' << pos[0] << ',' << pos[1]
                 << ',' << pos[2] << ',' << study.volume->value(ext) << ','
                 << study.volume->value(tree.node_vertex[br.saddle_node]);
@@ -232,7 +175,7 @@ void write_report_markdown(const std::filesystem::path &path, const ComparisonSt
             const topology::Branch &br = kept_branch(c, k);
             const uint32_t ext = tree.node_vertex[br.extremum_node];
             const auto pos = g.position_of(ext);
-            md << "| " << k << " | " << branch_kind_name(br.kind) << " | (" << fixed(pos[0], 1) << ", "
+            md << "| " << k << " | " << io::branch_kind_name(br.kind) << " | (" << fixed(pos[0], 1) << ", "
                << fixed(pos[1], 1) << ", " << fixed(pos[2], 1) << ") | " << general(study.volume->value(ext))
                << " | " << general(br.measures[topology::kPersistence]) << " | "
                << general(br.measures[topology::kVolumeMm3]) << " | "

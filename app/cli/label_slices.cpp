@@ -1,7 +1,7 @@
 #include "label_slices.hpp"
 
-#include "label_colors.hpp"
-#include "png_output.hpp"
+#include "io/label_colors.hpp"
+#include "io/png_output.hpp"
 
 #include <opencv2/imgproc.hpp>
 
@@ -50,7 +50,7 @@ void write_label_slices(const std::filesystem::path &path, const Volume &volume,
                     const auto b = static_cast<uint8_t>(255.0 * grey + 0.5);
                     pixel = {b, b, b};
                 } else {
-                    const Rgb8 c = label_color((*panels[p - 1].labels)[v]);
+                    const io::Rgb8 c = io::label_color((*panels[p - 1].labels)[v]);
                     // Half label colour, half intensity: structures keep their shading.
                     for (int ch = 0; ch < 3; ++ch)
                         pixel[ch] = static_cast<uint8_t>(0.55 * c[2 - ch] + 0.45 * 255.0 * grey + 0.5);
@@ -58,7 +58,7 @@ void write_label_slices(const std::filesystem::path &path, const Volume &volume,
                 cv::rectangle(image, cv::Rect(x0 + i * scale, kTitle + j * scale, scale, scale), pixel, cv::FILLED);
             }
     }
-    write_png(path, image);
+    io::write_png(path, image);
 }
 
 } // namespace arbor::cli

@@ -1,6 +1,6 @@
 #include "priority_lines.hpp"
 
-#include "png_output.hpp"
+#include "io/png_output.hpp"
 
 #include <opencv2/imgproc.hpp>
 
@@ -58,7 +58,7 @@ void write_priority_lines(const std::filesystem::path &path, const std::string &
         cv::putText(image, "threshold " + short_number(row.threshold), {kLeft + plot_width - 150, ty - 4},
                     cv::FONT_HERSHEY_SIMPLEX, 0.4, kThreshold, 1, cv::LINE_AA);
     }
-    write_png(path, image);
+    io::write_png(path, image);
 }
 
 } // namespace arbor::cli

@@ -1,9 +1,8 @@
 #include "simplification_run.hpp"
 
-#include "branch_json.hpp"
-
 #include "core/cancelled.hpp"
 #include "host/simplifier_importance.hpp"
+#include "io/topology_json.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -50,18 +49,13 @@ void add_cut_options(CLI::App &command, CutRequest &cut, const std::string &thre
     keep->excludes(threshold);
 }
 
-void write_cut(JsonStream &j, const CutRequest &cut)
+void write_cut(io::JsonWriter &j, const CutRequest &cut)
 {
-    j.key("cut");
-    j.raw("{");
-    if (cut.keep) {
-        j.key("keep");
-        j.number(static_cast<double>(*cut.keep));
-    } else {
-        j.key("threshold");
-        j.number(cut.threshold.value_or(0.0));
-    }
-    j.raw("}");
+    const io::JsonWriter::Scope o = j.object("cut");
+    if (cut.keep)
+        j.field("keep", *cut.keep);
+    else
+        j.field("threshold", cut.threshold.value_or(0.0));
 }
 
 SimplifiedTree simplify_tree(const topology::ContourTree &tree, const Volume &volume, PluginInstance &simplifier,
@@ -113,50 +107,31 @@ std::vector<uint32_t> kept_depths(const topology::SimplificationCut &cut)
     return depth;
 }
 
-void write_simplifier_fields(JsonStream &j, const SimplifiedTree &s)
+void write_simplifier_fields(io::JsonWriter &j, const SimplifiedTree &s)
 {
-    j.key("id");
-    j.string(s.id);
-    j.raw(",");
-    j.key("name");
-    j.string(s.name);
-    j.raw(",");
-    j.key("version");
-    j.string(s.version);
+    j.field("id", s.id);
+    j.field("name", s.name);
+    j.field("version", s.version);
 }
 
-void write_kept_branches(JsonStream &j, const topology::ContourTree &tree, const Volume &volume,
-                         const SimplifiedTree &s)
+void write_kept_branches(io::JsonWriter &j, std::string_view key, const topology::ContourTree &tree,
+                         const Volume &volume, const SimplifiedTree &s)
 {
     const topology::BranchDecomposition &d = s.branches;
     const std::vector<uint32_t> depth = kept_depths(s.cut);
-    j.raw("[");
+    const io::JsonWriter::Scope kept = j.array(key);
     for (std::size_t k = 0; k < s.cut.kept.size(); ++k) {
         const uint32_t b = s.cut.kept[k];
         const topology::Branch &br = d.branches[b];
-        j.raw(k ? ",\n{" : "\n{");
-        j.key("label");
-        j.number(static_cast<double>(k));
-        j.raw(",");
-        j.key("branch");
-        j.number(b);
-        j.raw(",");
-        j.key("parent_label");
-        j.number(s.cut.kept_parent[k]);
-        j.raw(",");
-        j.key("kind");
-        j.string(branch_kind_name(br.kind));
-        j.raw(",");
-        j.key("depth");
-        j.number(depth[k]);
-        j.raw(",");
-        j.key("importance");
-        j.number(std::isinf(br.importance) ? 1.0 : br.importance);
-        j.raw(",");
-        write_branch_ends_and_measures(j, tree, volume, d, b);
-        j.raw("}");
+        const io::JsonWriter::Scope o = j.object();
+        j.field("label", k);
+        j.field("branch", b);
+        j.field("parent_label", s.cut.kept_parent[k]);
+        j.field("kind", io::branch_kind_name(br.kind));
+        j.field("depth", depth[k]);
+        j.field("importance", std::isinf(br.importance) ? 1.0 : br.importance);
+        io::write_branch_ends_and_measures(j, tree, volume, d, b);
     }
-    j.raw("\n]");
 }
 
 } // namespace arbor::cli

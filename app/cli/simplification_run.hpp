@@ -6,13 +6,14 @@
 #pragma once
 
 #include "cli_context.hpp"
-#include "json_stream.hpp"
 
 #include "core/volume.hpp"
+#include "io/json_writer.hpp"
 #include "topology/simplification.hpp"
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace arbor::cli {
@@ -30,7 +31,7 @@ struct CutRequest {
 void add_cut_options(CLI::App &command, CutRequest &cut, const std::string &threshold_help);
 
 // "cut": {"keep": N} or {"threshold": T}.
-void write_cut(JsonStream &j, const CutRequest &cut);
+void write_cut(io::JsonWriter &j, const CutRequest &cut);
 
 struct SimplifiedTree {
     std::string id, name, version; // the simplifier plugin
@@ -51,12 +52,12 @@ std::vector<uint32_t> kept_depths(const topology::SimplificationCut &cut);
 
 // "id", "name", "version" of the simplifier that made `s` (fields of an
 // object the caller opens).
-void write_simplifier_fields(JsonStream &j, const SimplifiedTree &s);
+void write_simplifier_fields(io::JsonWriter &j, const SimplifiedTree &s);
 
-// A JSON array with one object per kept branch: label, branch, parent label,
-// kind, depth, importance, extremum and saddle points, measures absolute
-// and relative.
-void write_kept_branches(JsonStream &j, const topology::ContourTree &tree, const Volume &volume,
-                         const SimplifiedTree &s);
+// key: an array with one object per kept branch: label, branch, parent
+// label, kind, depth, importance, extremum and saddle points, measures
+// absolute and relative.
+void write_kept_branches(io::JsonWriter &j, std::string_view key, const topology::ContourTree &tree,
+                         const Volume &volume, const SimplifiedTree &s);
 
 } // namespace arbor::cli

@@ -1,5 +1,6 @@
 #include "topology_run.hpp"
 
+#include "core/resident_memory.hpp"
 #include "core/volume_header.hpp"
 
 #include <cstdio>
@@ -34,7 +35,7 @@ void print_timings(const topology::TopologyResult &result, const Volume &volume)
     for (const topology::StageTiming &t : result.timings)
         std::fprintf(stderr, "  %-20s %8.3f s\n", t.stage.c_str(), t.seconds);
     std::fprintf(stderr, "  %-20s %8.3f s\n", "total", result.total_seconds);
-    const uint64_t peak = topology::peak_resident_bytes();
+    const uint64_t peak = peak_resident_bytes();
     std::fprintf(stderr, "  %-20s %s (%.1f bytes/voxel, input %u bytes/voxel)\n", "peak memory",
                  format_bytes(peak).c_str(), static_cast<double>(peak) / n,
                  arbor_voxel_size(volume.type()));

@@ -1,9 +1,15 @@
 #include "transfer_function_json.hpp"
 
 #include "host/param_text.hpp"
+#include "io/json_writer.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <fstream>
+#include <string_view>
 
 namespace arbor::cli {
 
@@ -22,37 +28,22 @@ const char *role_name(arbor_branch_role r)
     }
 }
 
-void write_plugin(JsonStream &j, const PluginInstance &p)
+void write_plugin(io::JsonWriter &j, std::string_view key, const PluginInstance &p)
 {
-    j.raw("{");
-    j.key("id");
-    j.string(p.id());
-    j.raw(",");
-    j.key("version");
-    j.string(p.descriptor().version);
-    j.raw(",");
-    j.key("parameters");
-    j.raw("{");
-    bool first = true;
-    for (const arbor_param_desc *d : p.param_descriptions()) {
-        if (!first)
-            j.raw(",");
-        first = false;
-        j.key(d->id);
-        j.string(format_param_value(*d, p.get_param(d->id)));
-    }
-    j.raw("}}");
+    const io::JsonWriter::Scope plugin = j.object(key);
+    j.field("id", p.id());
+    j.field("version", p.descriptor().version);
+    const io::JsonWriter::Scope parameters = j.object("parameters");
+    for (const arbor_param_desc *d : p.param_descriptions())
+        j.field(d->id, format_param_value(*d, p.get_param(d->id)));
 }
 
-void write_rgba(JsonStream &j, const float *c)
+// A colour with six decimals (as a float: what renderers read back).
+void write_rgba(io::JsonWriter &j, const float *c)
 {
-    j.raw("[");
-    for (int k = 0; k < 4; ++k) {
-        if (k)
-            j.raw(",");
-        j.number(static_cast<float>(std::round(c[k] * 1e6) / 1e6));
-    }
-    j.raw("]");
+    const io::JsonWriter::Scope rgba = j.array();
+    for (int k = 0; k < 4; ++k)
+        j.value(static_cast<float>(std::round(c[k] * 1e6) / 1e6));
 }
 
 } // namespace
@@ -61,119 +52,62 @@ void write_transfer_functions(const std::string &path, const TransferFunctionFil
 {
     const TransferFunctions &tf = *f.functions;
     const arbor_branch_tree &tree = *f.tree;
-    AtomicFile file(path);
-    JsonStream j(file);
-    j.raw("{\n");
-    j.key("format");
-    j.string("arbor-transfer-functions/1");
-    j.raw(",\n");
-    j.key("source");
-    j.string(f.source);
-    j.raw(",\n");
-    j.key("simplifier");
-    j.raw("{");
-    j.key("id");
-    j.string(f.simplifier_id);
-    j.raw(",");
-    j.key("cut");
-    j.string(f.cut);
-    j.raw("},\n");
-    j.key("generator");
-    write_plugin(j, *f.generator);
-    j.raw(",\n");
-    j.key("depictor");
-    if (f.depictor) {
-        write_plugin(j, *f.depictor);
-        j.raw(",\n");
-        j.key("selected_branch");
-        j.number(f.selected_branch);
-    } else {
-        j.raw("null");
-    }
-    j.raw(",\n");
-    j.key("value_range");
-    j.raw("[");
-    j.number(f.value_range[0]);
-    j.raw(",");
-    j.number(f.value_range[1]);
-    j.raw("],\n");
-    j.key("lut_size");
-    j.number(tf.lut_size());
-    j.raw(",\n");
-    j.key("opacity_unit_distance_mm");
-    j.number(tf.record().opacity_unit_distance);
-    j.raw(",\n");
-    j.key("branches");
-    j.raw("[");
-    for (uint32_t b = 0; b < tf.branch_count(); ++b) {
-        j.raw(b ? ",\n{" : "\n{");
-        j.key("label");
-        j.number(b);
-        j.raw(",");
-        j.key("parent");
-        j.number(tree.parent[b]);
-        j.raw(",");
-        j.key("depth");
-        j.number(tree.depth[b]);
-        j.raw(",");
-        j.key("kind");
-        j.string(b == 0 ? "root" : (tree.extremum_kind[b] == ARBOR_EXTREMUM_MINIMUM ? "minimum" : "maximum"));
-        j.raw(",");
-        j.key("extremum_vertex");
-        j.number(static_cast<double>(tree.extremum_vertex[b]));
-        if (f.depiction) {
-            j.raw(",");
-            j.key("role");
-            j.string(role_name(f.depiction->role[b]));
+    io::write_json_file(path, io::JsonLayout::indented, [&](io::JsonWriter &j) {
+        j.field("format", "arbor-transfer-functions/1");
+        j.field("source", f.source);
+        {
+            const io::JsonWriter::Scope simplifier = j.object("simplifier");
+            j.field("id", f.simplifier_id);
+            j.field("cut", f.cut);
         }
-        j.raw(",");
-        j.key("domain");
-        j.raw("[");
-        j.number(tf.domain(b).first);
-        j.raw(",");
-        j.number(tf.domain(b).second);
-        j.raw("],");
-        const float *lut = tf.lut(b);
-        float lo = 1.0f, hi = 0.0f;
-        for (uint32_t i = 0; i < tf.lut_size(); ++i) {
-            lo = std::min(lo, lut[4 * i + 3]);
-            hi = std::max(hi, lut[4 * i + 3]);
+        write_plugin(j, "generator", *f.generator);
+        if (f.depictor) {
+            write_plugin(j, "depictor", *f.depictor);
+            j.field("selected_branch", f.selected_branch);
+        } else {
+            j.key("depictor");
+            j.null();
         }
-        j.key("opacity_range");
-        j.raw("[");
-        j.number(lo);
-        j.raw(",");
-        j.number(hi);
-        j.raw("],");
-        // The colour at the extremum end: the branch's own colour.
-        const bool at_low = tree.extremum_value[b] < tree.saddle_value[b] && b != 0;
-        j.key("rgba_at_extremum");
-        write_rgba(j, lut + 4 * (at_low ? 0 : tf.lut_size() - 1));
-        j.raw(",");
-        j.key("points");
-        j.raw("[");
-        for (uint32_t i = tf.point_offsets()[b]; i < tf.point_offsets()[b + 1]; ++i) {
-            const arbor_tf_point &p = tf.points()[i];
-            j.raw(i > tf.point_offsets()[b] ? ",{" : "{");
-            j.key("value");
-            j.number(p.value);
-            j.raw(",");
-            j.key("rgba");
-            write_rgba(j, p.rgba);
-            j.raw("}");
+        j.field("value_range", f.value_range);
+        j.field("lut_size", tf.lut_size());
+        j.field("opacity_unit_distance_mm", tf.record().opacity_unit_distance);
+        const io::JsonWriter::Scope branches = j.array("branches");
+        for (uint32_t b = 0; b < tf.branch_count(); ++b) {
+            const io::JsonWriter::Scope branch = j.object();
+            j.field("label", b);
+            j.field("parent", tree.parent[b]);
+            j.field("depth", tree.depth[b]);
+            j.field("kind", b == 0 ? "root" : (tree.extremum_kind[b] == ARBOR_EXTREMUM_MINIMUM ? "minimum" : "maximum"));
+            j.field("extremum_vertex", tree.extremum_vertex[b]);
+            if (f.depiction)
+                j.field("role", role_name(f.depiction->role[b]));
+            j.field("domain", std::array<double, 2>{tf.domain(b).first, tf.domain(b).second});
+            const float *lut = tf.lut(b);
+            float lo = 1.0f, hi = 0.0f;
+            for (uint32_t i = 0; i < tf.lut_size(); ++i) {
+                lo = std::min(lo, lut[4 * i + 3]);
+                hi = std::max(hi, lut[4 * i + 3]);
+            }
+            j.field("opacity_range", std::array<float, 2>{lo, hi});
+            // The colour at the extremum end: the branch's own colour.
+            const bool at_low = tree.extremum_value[b] < tree.saddle_value[b] && b != 0;
+            j.key("rgba_at_extremum");
+            write_rgba(j, lut + 4 * (at_low ? 0 : tf.lut_size() - 1));
+            {
+                const io::JsonWriter::Scope points = j.array("points");
+                for (uint32_t i = tf.point_offsets()[b]; i < tf.point_offsets()[b + 1]; ++i) {
+                    const arbor_tf_point &p = tf.points()[i];
+                    const io::JsonWriter::Scope point = j.object();
+                    j.field("value", p.value);
+                    j.key("rgba");
+                    write_rgba(j, p.rgba);
+                }
+            }
+            const io::JsonWriter::Scope entries = j.array("lut");
+            for (uint32_t i = 0; i < tf.lut_size(); ++i)
+                write_rgba(j, lut + 4 * i);
         }
-        j.raw("],");
-        j.key("lut");
-        j.raw("[");
-        for (uint32_t i = 0; i < tf.lut_size(); ++i) {
-            if (i)
-                j.raw(",");
-            write_rgba(j, lut + 4 * i);
-        }
-        j.raw("]}");
-    }
-    j.raw("\n]\n}\n");
-    file.commit();
+    });
 }
 
 StoredTransferFunctions read_transfer_functions(const std::string &path)

@@ -6,8 +6,6 @@
 // its cut.
 #pragma once
 
-#include "json_stream.hpp"
-
 #include "host/plugin_instance.hpp"
 #include "host/tf_generation.hpp"
 

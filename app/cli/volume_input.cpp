@@ -1,8 +1,8 @@
 #include "volume_input.hpp"
 
-#include "core/phantom.hpp"
 #include "host/param_text.hpp"
 #include "host/volume_import.hpp"
+#include "io/phantom.hpp"
 
 #include <stdexcept>
 
@@ -15,7 +15,7 @@ void VolumeInput::add_to(CLI::App &command, Context &context)
                                     "Volume file or folder (DICOM folder or file, NRRD, MetaImage, VTK, NIfTI, raw...)");
     auto *phantom = command.add_option("--phantom", phantom_,
                                        "Use a built-in synthetic volume instead of a file (head)");
-    phantom->check(CLI::IsMember(builtin_phantom_kinds()));
+    phantom->check(CLI::IsMember(io::builtin_phantom_kinds()));
     file->excludes(phantom);
     command.add_option("--phantom-size", phantom_size_, "Phantom voxels per axis")
         ->default_val(128)->check(CLI::Range(8, 1024))->group("Phantom");
@@ -50,12 +50,12 @@ LoadedVolume VolumeInput::load()
 {
     LoadedVolume out;
     if (!phantom_.empty()) {
-        PhantomOptions o;
+        io::PhantomOptions o;
         o.size = phantom_size_;
         o.noise_sigma = phantom_noise_;
         o.blobs = phantom_blobs_;
         o.seed = phantom_seed_;
-        out.volume = make_phantom(builtin_phantom(phantom_), o);
+        out.volume = io::make_phantom(io::builtin_phantom(phantom_), o);
         out.source = "phantom:" + phantom_;
         return out;
     }

@@ -4,21 +4,13 @@
 
 #include "plugin_instance.hpp"
 
+#include "core/rendered_image.hpp"
 #include "core/volume.hpp"
 
 #include <arbor/renderer.h>
 
-#include <vector>
 
 namespace arbor {
-
-// RGBA floats, premultiplied, display-encoded sRGB, row 0 at the top, and
-// the distance in mm at which each pixel's ray became half opaque (+inf
-// where it never did).
-struct RenderedImage {
-    uint32_t width = 0, height = 0;
-    std::vector<float> rgba, depth;
-};
 
 RenderedImage render_image(PluginInstance &renderer, const arbor_render_request &request, uint32_t width,
                            uint32_t height, ProgressSink *progress = nullptr, std::stop_token stop = {});

@@ -12,7 +12,6 @@
 
 #include <chrono>
 #include <exception>
-#include <fstream>
 #include <stdexcept>
 #include <thread>
 
@@ -128,27 +127,6 @@ TopologyResult compute_topology(const Volume &volume, const ImportanceFn &import
     TopologyResult result = compute_contour_tree(volume, progress, stop);
     decompose(result, volume, importance, progress, stop);
     return result;
-}
-
-uint64_t peak_resident_bytes()
-{
-    std::ifstream status("/proc/self/status");
-    std::string key;
-    while (status >> key) {
-        if (key == "VmHWM:") {
-            uint64_t kb = 0;
-            status >> kb;
-            return kb * 1024;
-        }
-        std::getline(status, key);
-    }
-    return 0;
-}
-
-void reset_peak_resident_bytes()
-{
-    // Writing 5 to clear_refs resets VmHWM to the current resident size.
-    std::ofstream("/proc/self/clear_refs") << "5";
 }
 
 } // namespace arbor::topology

@@ -49,9 +49,4 @@ void decompose(TopologyResult &result, const Volume &volume, const ImportanceFn 
 TopologyResult compute_topology(const Volume &volume, const ImportanceFn &importance,
                                 const StageProgressFn &progress = {}, std::stop_token stop = {});
 
-// Peak resident memory of this process so far, in bytes (VmHWM), and a way to
-// restart the peak (for benchmarks measuring one volume after another).
-uint64_t peak_resident_bytes();
-void reset_peak_resident_bytes();
-
 } // namespace arbor::topology

@@ -58,14 +58,14 @@ std::vector<BenchInput> all_inputs(const CatalogueOptions &options)
     std::vector<BenchInput> inputs;
     for (int64_t n : options.phantom_sizes) {
         BenchInput clean = named("phantom_head_" + std::to_string(n), n);
-        clean.phantom = PhantomOptions{.size = n};
+        clean.phantom = io::PhantomOptions{.size = n};
         inputs.push_back(clean);
         if (options.phantom_noise > 0 || options.phantom_blobs > 0) {
             BenchInput noisy = named(clean.name + "_noise" + format_noise(options.phantom_noise) + "_blobs" +
                                          std::to_string(options.phantom_blobs),
                                      n);
-            noisy.phantom = PhantomOptions{.size = n, .noise_sigma = options.phantom_noise,
-                                           .blobs = options.phantom_blobs};
+            noisy.phantom = io::PhantomOptions{.size = n, .noise_sigma = options.phantom_noise,
+                                               .blobs = options.phantom_blobs};
             inputs.push_back(noisy);
         }
     }

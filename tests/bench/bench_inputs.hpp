@@ -5,7 +5,7 @@
 
 #include "synthetic_cache.hpp"
 
-#include "core/phantom.hpp"
+#include "io/phantom.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -20,7 +20,7 @@ struct BenchInput {
     int64_t max_dim = 0; // largest axis, for --max-size
     std::filesystem::path file;               // a shared real volume
     std::optional<SyntheticField> synthetic;  // a generated field
-    std::optional<PhantomOptions> phantom;    // the head phantom
+    std::optional<io::PhantomOptions> phantom;    // the head phantom
 };
 
 struct CatalogueOptions {

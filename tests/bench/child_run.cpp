@@ -1,5 +1,6 @@
 #include "child_run.hpp"
 
+#include "core/resident_memory.hpp"
 #include "topology/topology_pipeline.hpp"
 
 #include <algorithm>
@@ -9,7 +10,6 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <type_traits>
@@ -41,21 +41,6 @@ struct WireReport {
 };
 static_assert(std::is_trivially_copyable_v<WireReport>);
 
-uint64_t resident_bytes()
-{
-    std::ifstream status("/proc/self/status");
-    std::string key;
-    while (status >> key) {
-        if (key == "VmRSS:") {
-            uint64_t kb = 0;
-            status >> kb;
-            return kb * 1024;
-        }
-        std::getline(status, key);
-    }
-    return 0;
-}
-
 void measure(const VolumeLoader &load, int repeats, WireReport &out)
 {
     const auto t0 = std::chrono::steady_clock::now();
@@ -74,14 +59,14 @@ void measure(const VolumeLoader &load, int repeats, WireReport &out)
         malloc_trim(0);
         if (r == 0) {
             out.base_rss = resident_bytes();
-            topology::reset_peak_resident_bytes();
+            reset_peak_resident_bytes();
             // The reset sets VmHWM to the current RSS; if it is well above,
             // the kernel ignored it and the peak may be the loader's.
-            out.peak_reset = topology::peak_resident_bytes() <= out.base_rss + (4u << 20);
+            out.peak_reset = peak_resident_bytes() <= out.base_rss + (4u << 20);
         }
         const topology::TopologyResult result = topology::compute_topology(volume, importance);
         if (r == 0) {
-            out.peak_rss = topology::peak_resident_bytes();
+            out.peak_rss = peak_resident_bytes();
             out.nodes = static_cast<int64_t>(result.tree.node_count());
             out.extrema = std::count_if(result.tree.node_kind.begin(), result.tree.node_kind.end(),
                                         [](topology::NodeKind k) {

@@ -31,7 +31,7 @@ Volume load_input(const BenchInput &input, const std::filesystem::path &file,
                   const std::filesystem::path &plugin_dir)
 {
     if (input.phantom)
-        return make_phantom(builtin_phantom("head"), *input.phantom);
+        return io::make_phantom(io::builtin_phantom("head"), *input.phantom);
     return import_file(file, plugin_dir);
 }
 

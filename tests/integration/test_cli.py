@@ -323,6 +323,31 @@ class Topology(unittest.TestCase):
         self.assertIn("1 NaN", err)
         self.assertIn("1, 1, 1", err)
 
+    def test_file_names_that_are_not_utf8_come_out_as_valid_json(self):
+        # A Latin-1 file name: its bytes are not UTF-8, yet every JSON output
+        # must be, with the stray byte replaced by U+FFFD.
+        # (The messages on stdout name the file as it is, so they are read
+        # as bytes here.)
+        src = SCRATCH / os.fsdecode(b"M\xfcller.nrrd")
+        expected = str(src).replace(os.fsdecode(b"\xfc"), "\ufffd")
+
+        def run(*args):
+            env = {k: v for k, v in os.environ.items() if k not in ("ARBOR_PLUGIN_PATH", "XDG_DATA_HOME")}
+            p = subprocess.run([ARBOR, *map(str, args)], capture_output=True, timeout=600,
+                               env={**env, "HOME": str(SCRATCH / "home")})
+            self.assertEqual(p.returncode, 0, p.stderr.decode("utf-8", "replace"))
+            return p.stdout
+
+        read = lambda p: json.loads(p.read_bytes().decode("utf-8"))
+        run("convert", DATA / "nucleon/nucleon.nrrd", "-o", src)
+        run("tree", src, "--json", SCRATCH / "latin1-tree.json")
+        self.assertEqual(read(SCRATCH / "latin1-tree.json")["volume"]["source"], expected)
+        run("simplify", src, "--keep", 3, "--json", SCRATCH / "latin1-kept.json")
+        self.assertEqual(read(SCRATCH / "latin1-kept.json")["volume"]["source"], expected)
+        run("run", src, "--keep", 3, "--width", 32, "--height", 32, "-o", SCRATCH / "latin1.png")
+        self.assertEqual(read(SCRATCH / "latin1.report.json")["input"]["source"], expected)
+        self.assertEqual(json.loads(run("info", src, "--json").decode("utf-8"))["source"], expected)
+
     def test_constant_and_single_voxel_volumes(self):
         for sizes in ("4 3 2", "1 1 1"):
             with self.subTest(sizes=sizes):

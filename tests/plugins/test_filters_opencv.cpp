@@ -4,7 +4,7 @@
 // stay constant; types OpenCV cannot take are refused clearly.
 #include "plugin_fixture.hpp"
 
-#include "core/phantom.hpp"
+#include "io/phantom.hpp"
 #include "host/filter_run.hpp"
 #include "host/simplifier_importance.hpp"
 #include "topology/simplification.hpp"
@@ -28,10 +28,10 @@ PluginInstance filter(const std::string &name, const std::map<std::string, std::
 const Volume &noisy_phantom()
 {
     static const Volume v = [] {
-        PhantomOptions o;
+        io::PhantomOptions o;
         o.noise_sigma = 8;
         o.blobs = 20;
-        return make_phantom(builtin_phantom("head"), o);
+        return io::make_phantom(io::builtin_phantom("head"), o);
     }();
     return v;
 }

@@ -6,7 +6,7 @@
 // problem, never crash.
 #include "plugin_fixture.hpp"
 
-#include "core/nrrd_writer.hpp"
+#include "io/nrrd_writer.hpp"
 #include "host/host_services.hpp"
 
 #include <gtest/gtest.h>
@@ -649,9 +649,9 @@ TEST(ImportersBasic, NrrdWrittenByArborReadsBack)
     for (bool gzip : {true, false}) {
         SCOPED_TRACE(gzip ? "gzip" : "raw");
         const fs::path path = dir / (gzip ? "round-gz.nrrd" : "round-raw.nrrd");
-        NrrdWriteOptions options;
+        io::NrrdWriteOptions options;
         options.gzip = gzip;
-        write_nrrd(original, path, options);
+        io::write_nrrd(original, path, options);
         const Volume v = test::import(path);
         ASSERT_EQ(v.type(), ARBOR_VOXEL_I16);
         expect_dims(v, 5, 4, 3);

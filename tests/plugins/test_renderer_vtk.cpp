@@ -5,7 +5,7 @@
 #include "global_ramp.hpp"
 #include "plugin_fixture.hpp"
 
-#include "core/phantom.hpp"
+#include "io/phantom.hpp"
 #include "host/rendering.hpp"
 #include "host/tf_generation.hpp"
 
@@ -38,9 +38,9 @@ TEST(VtkReference, CpuRayCasterAgreesWithVtkOnAGlobalTransferFunction)
     const char *display = std::getenv("DISPLAY");
     if (!display || !*display)
         GTEST_SKIP() << "no X display: VTK 9.1 renders through X (run ctest under xvfb-run)";
-    PhantomOptions o;
+    io::PhantomOptions o;
     o.size = 96;
-    const Volume v = make_phantom(builtin_phantom("head"), o);
+    const Volume v = io::make_phantom(io::builtin_phantom("head"), o);
     const arbor_volume view = v.view();
     TransferFunctions tf(1, 256, 4.0 * v.geometry().spacing[0]);
     test::global_ramp(tf, 0.0, 760.0);

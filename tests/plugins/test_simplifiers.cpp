@@ -5,7 +5,7 @@
 // and the refusal of plugins that return NaN or negative importance.
 #include "plugin_fixture.hpp"
 
-#include "core/phantom.hpp"
+#include "io/phantom.hpp"
 #include "host/simplifier_importance.hpp"
 #include "topology/simplification.hpp"
 #include "topology/topology_pipeline.hpp"
@@ -133,7 +133,7 @@ TEST(Simplifiers, NMeasureRefusesFewerThanTwoOrUnknownMeasures)
 // The noisy phantom of the thesis' argument: a large low-contrast tumour,
 // small high-contrast blobs, noise everywhere.
 struct NoisyPhantom {
-    PhantomRecipe recipe = builtin_phantom("head");
+    io::PhantomRecipe recipe = io::builtin_phantom("head");
     Volume volume;
     topology::TopologyResult topo;
     std::array<double, 3> tumour_mm{};
@@ -141,13 +141,13 @@ struct NoisyPhantom {
 
     NoisyPhantom()
     {
-        PhantomOptions o;
+        io::PhantomOptions o;
         o.size = 128;
         o.noise_sigma = 8;
         o.blobs = 20;
-        volume = make_phantom(recipe, o);
+        volume = io::make_phantom(recipe, o);
         topo = topology::compute_contour_tree(volume);
-        for (const PhantomStructure &s : recipe.structures)
+        for (const io::PhantomStructure &s : recipe.structures)
             if (s.name == "tumour") {
                 for (int a = 0; a < 3; ++a)
                     tumour_mm[a] = s.center[a] * recipe.field_of_view_mm / 2;

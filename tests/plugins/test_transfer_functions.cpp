@@ -9,7 +9,7 @@
 #include "branch_colours.hpp" // plugins/tf-generators: the colour targets
 #include "colour_space.hpp"
 #include "harmonic_template.hpp"
-#include "core/phantom.hpp"
+#include "io/phantom.hpp"
 #include "host/branch_tree_record.hpp"
 #include "host/simplifier_importance.hpp"
 #include "host/tf_generation.hpp"
@@ -290,9 +290,9 @@ TEST(TransferFunctions, HistogramBaselineIsOneGlobalFunction)
 {
     test::BranchTreeBuilder builder = hand_tree();
     const arbor_branch_tree &tree = builder.record();
-    PhantomOptions o;
+    io::PhantomOptions o;
     o.size = 32;
-    const Volume volume = make_phantom(builtin_phantom("head"), o);
+    const Volume volume = io::make_phantom(io::builtin_phantom("head"), o);
     const arbor_volume view = volume.view();
     arbor_tf_request r = request_for(tree);
     r.volume = &view;
@@ -317,10 +317,10 @@ struct PhantomTree {
 
     PhantomTree()
     {
-        const PhantomRecipe recipe = builtin_phantom("head");
-        PhantomOptions o;
+        const io::PhantomRecipe recipe = io::builtin_phantom("head");
+        io::PhantomOptions o;
         o.noise_sigma = 8;
-        volume = make_phantom(recipe, o);
+        volume = io::make_phantom(recipe, o);
         topo = topology::compute_contour_tree(volume);
         PluginInstance itri = create("org.arbor.simplifier.itri");
         const topology::FieldView field{volume.type(), volume.data(), static_cast<uint32_t>(volume.voxel_count()),

@@ -1,6 +1,6 @@
 // The built-in phantom: deterministic, and it makes the thesis' point —
 // nested structures whose value ranges overlap.
-#include "core/phantom.hpp"
+#include "io/phantom.hpp"
 #include "core/volume_statistics.hpp"
 
 #include <gtest/gtest.h>
@@ -23,12 +23,12 @@ double value_at(const Volume &v, double x_mm, double y_mm, double z_mm)
 }
 
 // LPS position (mm) of a recipe coordinate (fractions of half the field of view).
-double mm(const PhantomRecipe &r, double fraction)
+double mm(const io::PhantomRecipe &r, double fraction)
 {
     return fraction * r.field_of_view_mm / 2;
 }
 
-const PhantomStructure &structure(const PhantomRecipe &r, const std::string &name)
+const io::PhantomStructure &structure(const io::PhantomRecipe &r, const std::string &name)
 {
     for (const auto &s : r.structures)
         if (s.name == name)
@@ -38,25 +38,25 @@ const PhantomStructure &structure(const PhantomRecipe &r, const std::string &nam
 
 TEST(Phantom, IsDeterministic)
 {
-    const PhantomRecipe r = builtin_phantom("head");
-    PhantomOptions o;
+    const io::PhantomRecipe r = io::builtin_phantom("head");
+    io::PhantomOptions o;
     o.size = 48;
     o.noise_sigma = 7;
     o.blobs = 5;
     o.seed = 42;
-    const Volume a = make_phantom(r, o), b = make_phantom(r, o);
+    const Volume a = io::make_phantom(r, o), b = io::make_phantom(r, o);
     ASSERT_EQ(a.byte_size(), b.byte_size());
     EXPECT_EQ(std::memcmp(a.data(), b.data(), a.byte_size()), 0);
     o.seed = 43;
-    const Volume c = make_phantom(r, o);
+    const Volume c = io::make_phantom(r, o);
     EXPECT_NE(std::memcmp(a.data(), c.data(), a.byte_size()), 0);
 }
 
 TEST(Phantom, GeometryIsCentredOnTheOrigin)
 {
-    PhantomOptions o;
+    io::PhantomOptions o;
     o.size = 64;
-    const Volume v = make_phantom(builtin_phantom("head"), o);
+    const Volume v = io::make_phantom(io::builtin_phantom("head"), o);
     const Geometry &g = v.geometry();
     EXPECT_EQ(g.dims, (std::array<int64_t, 3>{64, 64, 64}));
     EXPECT_DOUBLE_EQ(g.spacing[0], 200.0 / 64);
@@ -67,10 +67,10 @@ TEST(Phantom, GeometryIsCentredOnTheOrigin)
 
 TEST(Phantom, StructuresAreNestedWithOverlappingValues)
 {
-    const PhantomRecipe r = builtin_phantom("head");
-    PhantomOptions o;
+    const io::PhantomRecipe r = io::builtin_phantom("head");
+    io::PhantomOptions o;
     o.size = 128;
-    const Volume v = make_phantom(r, o);
+    const Volume v = io::make_phantom(r, o);
     const auto at = [&](double x, double y, double z) { return value_at(v, mm(r, x), mm(r, y), mm(r, z)); };
 
     // Walk from outside to the centre of the right hemisphere along +/- x.
@@ -79,10 +79,10 @@ TEST(Phantom, StructuresAreNestedWithOverlappingValues)
     EXPECT_NEAR(at(-0.645, 0, 0), 80, 1);                // skull shell
     EXPECT_NEAR(at(-0.60, 0, 0), 150, 1);                // CSF
     EXPECT_NEAR(at(-0.47, 0, 0), 470, 1);                // grey matter
-    const PhantomStructure &ventricle = structure(r, "ventricle");
+    const io::PhantomStructure &ventricle = structure(r, "ventricle");
     EXPECT_NEAR(at(ventricle.center[0], ventricle.center[1], ventricle.center[2]), 150, 1);
-    const PhantomStructure &tumour = structure(r, "tumour");
-    const PhantomStructure &white = structure(r, "right-white-matter");
+    const io::PhantomStructure &tumour = structure(r, "tumour");
+    const io::PhantomStructure &white = structure(r, "right-white-matter");
     const double tumour_peak = at(tumour.center[0], tumour.center[1], tumour.center[2]);
     const double white_peak = at(white.center[0], white.center[1], white.center[2]);
     // The tumour is a bump on the grey matter, lower than the white matter's
@@ -101,30 +101,31 @@ TEST(Phantom, StructuresAreNestedWithOverlappingValues)
 
 TEST(Phantom, NoiseAndBlobsChangeTheStatistics)
 {
-    const PhantomRecipe r = builtin_phantom("head");
-    PhantomOptions clean;
+    const io::PhantomRecipe r = io::builtin_phantom("head");
+    io::PhantomOptions clean;
     clean.size = 64;
-    PhantomOptions noisy = clean;
+    io::PhantomOptions noisy = clean;
     noisy.noise_sigma = 10;
     noisy.blobs = 20;
-    const VolumeStatistics a = compute_statistics(make_phantom(r, clean));
-    const VolumeStatistics b = compute_statistics(make_phantom(r, noisy));
+    const VolumeStatistics a = compute_statistics(io::make_phantom(r, clean));
+    const VolumeStatistics b = compute_statistics(io::make_phantom(r, noisy));
     EXPECT_EQ(a.max, 700);
     EXPECT_GT(b.stddev, a.stddev);
 }
 
 TEST(Phantom, RefusesBadOptionsAndRecipes)
 {
-    const PhantomRecipe r = builtin_phantom("head");
-    PhantomOptions o;
+    const io::PhantomRecipe r = io::builtin_phantom("head");
+    io::PhantomOptions o;
     o.size = 4;
-    EXPECT_THROW(make_phantom(r, o), std::invalid_argument);
+    EXPECT_THROW(io::make_phantom(r, o), std::invalid_argument);
     o.size = 32;
     o.noise_sigma = -1;
-    EXPECT_THROW(make_phantom(r, o), std::invalid_argument);
-    EXPECT_THROW(builtin_phantom("torso"), std::invalid_argument);
-    EXPECT_THROW(parse_phantom_recipe("{not json"), std::invalid_argument);
-    EXPECT_THROW(parse_phantom_recipe(R"({"name":"x","structures":[{"name":"a","center":[0,0],"radii":[1,1,1],"edge":0,"peak":1}]})"),
+    EXPECT_THROW(io::make_phantom(r, o), std::invalid_argument);
+    EXPECT_THROW(io::builtin_phantom("torso"), std::invalid_argument);
+    EXPECT_THROW(io::parse_phantom_recipe("{not json"), std::invalid_argument);
+    EXPECT_THROW(io::parse_phantom_recipe(
+                     R"({"name":"x","structures":[{"name":"a","center":[0,0],"radii":[1,1,1],"edge":0,"peak":1}]})"),
                  std::invalid_argument);
 }
 

@@ -12,7 +12,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace arbor::cli {
+namespace arbor::io {
 
 namespace {
 
@@ -100,4 +100,4 @@ double covered_fraction(const RenderedImage &image)
     return n ? static_cast<double>(differ) / n : 0.0;
 }
 
-} // namespace arbor::cli
+} // namespace arbor::io

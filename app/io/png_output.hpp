@@ -6,9 +6,9 @@
 
 #include <filesystem>
 
-namespace arbor::cli {
+namespace arbor::io {
 
 // Throws std::runtime_error naming the file on failure.
 void write_png(const std::filesystem::path &path, const cv::Mat &image);
 
-} // namespace arbor::cli
+} // namespace arbor::io

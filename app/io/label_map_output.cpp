@@ -3,11 +3,11 @@
 #include "label_colors.hpp"
 
 #include "core/atomic_file.hpp"
-#include "core/nrrd_writer.hpp"
+#include "nrrd_writer.hpp"
 
 #include <algorithm>
 
-namespace arbor::cli {
+namespace arbor::io {
 
 std::filesystem::path color_table_path(const std::filesystem::path &labels_path)
 {
@@ -50,4 +50,4 @@ void write_label_map(const std::filesystem::path &path, const Geometry &geometry
     table.commit();
 }
 
-} // namespace arbor::cli
+} // namespace arbor::io

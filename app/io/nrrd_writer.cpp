@@ -1,6 +1,6 @@
 #include "nrrd_writer.hpp"
 
-#include "atomic_file.hpp"
+#include "core/atomic_file.hpp"
 
 #include <zlib.h>
 
@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace arbor {
+namespace arbor::io {
 
 static_assert(std::endian::native == std::endian::little,
               "the NRRD writer assumes a little-endian host");
@@ -122,4 +122,4 @@ void write_nrrd(const Volume &volume, const std::filesystem::path &path,
     out.commit();
 }
 
-} // namespace arbor
+} // namespace arbor::io

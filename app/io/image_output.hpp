@@ -4,11 +4,11 @@
 // half-opaque hit in mm), chosen by the file's suffix.
 #pragma once
 
-#include "host/rendering.hpp"
+#include "core/rendered_image.hpp"
 
 #include <filesystem>
 
-namespace arbor::cli {
+namespace arbor::io {
 
 // ".png" or ".exr"; throws std::invalid_argument for other suffixes and
 // std::runtime_error naming the file when writing fails.
@@ -17,4 +17,4 @@ void write_image(const std::filesystem::path &path, const RenderedImage &image);
 // Fraction of pixels that differ from the top-left one: a blank image gives 0.
 double covered_fraction(const RenderedImage &image);
 
-} // namespace arbor::cli
+} // namespace arbor::io

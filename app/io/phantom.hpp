@@ -8,7 +8,7 @@
 // standard library's distributions, whose output is implementation-defined.
 #pragma once
 
-#include "volume.hpp"
+#include "core/volume.hpp"
 
 #include <array>
 #include <cstdint>
@@ -16,7 +16,7 @@
 #include <string_view>
 #include <vector>
 
-namespace arbor {
+namespace arbor::io {
 
 struct PhantomStructure {
     enum class Mode { Paint, Add };
@@ -66,4 +66,4 @@ Volume make_phantom(const PhantomRecipe &recipe, const PhantomOptions &options);
 // Blobs and noise are not structures: they keep the label around them.
 std::vector<uint32_t> phantom_structure_labels(const PhantomRecipe &recipe, int64_t size);
 
-} // namespace arbor
+} // namespace arbor::io

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace arbor::cli {
+namespace arbor::io {
 
 Rgb8 label_color(uint32_t label)
 {
@@ -27,4 +27,4 @@ Rgb8 label_color(uint32_t label)
     return {byte(r), byte(g), byte(b)};
 }
 
-} // namespace arbor::cli
+} // namespace arbor::io

@@ -5,14 +5,14 @@
 // key/value pairs that Arbor's NRRD importer reads back.
 #pragma once
 
-#include "volume.hpp"
+#include "core/volume.hpp"
 
 #include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
 
-namespace arbor {
+namespace arbor::io {
 
 struct NrrdWriteOptions {
     bool gzip = true;
@@ -29,4 +29,4 @@ void write_nrrd(const Volume &volume, const std::filesystem::path &path,
 // NRRD type name of a voxel type ("uint8", "int16", "float"...).
 const char *nrrd_type_name(arbor_voxel_type type);
 
-} // namespace arbor
+} // namespace arbor::io

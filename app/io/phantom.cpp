@@ -1,6 +1,6 @@
 #include "phantom.hpp"
 
-#include "voxel_type.hpp"
+#include "core/voxel_type.hpp"
 
 #include <embedded_resources.hpp>
 #include <nlohmann/json.hpp>
@@ -11,7 +11,7 @@
 #include <numbers>
 #include <stdexcept>
 
-namespace arbor {
+namespace arbor::io {
 
 namespace {
 
@@ -264,9 +264,9 @@ Volume make_phantom(const PhantomRecipe &recipe, const PhantomOptions &options)
     return volume;
 }
 
-} // namespace arbor
+} // namespace arbor::io
 
-namespace arbor {
+namespace arbor::io {
 
 std::vector<uint32_t> phantom_structure_labels(const PhantomRecipe &recipe, int64_t size)
 {
@@ -285,4 +285,4 @@ std::vector<uint32_t> phantom_structure_labels(const PhantomRecipe &recipe, int6
     return labels;
 }
 
-} // namespace arbor
+} // namespace arbor::io

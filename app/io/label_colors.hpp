@@ -6,7 +6,7 @@
 #include <array>
 #include <cstdint>
 
-namespace arbor::cli {
+namespace arbor::io {
 
 using Rgb8 = std::array<uint8_t, 3>;
 
@@ -15,4 +15,4 @@ using Rgb8 = std::array<uint8_t, 3>;
 // angle), so neighbouring labels differ strongly, at alternating lightness.
 Rgb8 label_color(uint32_t label);
 
-} // namespace arbor::cli
+} // namespace arbor::io

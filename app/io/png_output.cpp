@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace arbor::cli {
+namespace arbor::io {
 
 void write_png(const std::filesystem::path &path, const cv::Mat &image)
 {
@@ -19,4 +19,4 @@ void write_png(const std::filesystem::path &path, const cv::Mat &image)
     file.commit();
 }
 
-} // namespace arbor::cli
+} // namespace arbor::io

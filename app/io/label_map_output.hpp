@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace arbor::cli {
+namespace arbor::io {
 
 // The colour table written next to `labels_path`: its .nrrd/.nhdr suffix
 // replaced by .ctbl (or .ctbl appended).
@@ -22,4 +22,4 @@ std::filesystem::path color_table_path(const std::filesystem::path &labels_path)
 void write_label_map(const std::filesystem::path &path, const Geometry &geometry, const std::string &content,
                      const std::vector<uint32_t> &labels, const std::vector<std::string> &names);
 
-} // namespace arbor::cli
+} // namespace arbor::io
