@@ -3,6 +3,7 @@
 // become flags), the terminal progress display and the memory limit.
 #pragma once
 
+#include "plugin_flags.hpp"
 #include "terminal_progress.hpp"
 
 #include "host/plugin_registry.hpp"
@@ -24,6 +25,8 @@ struct Context {
     uint64_t max_volume_bytes = 0;
     // Ctrl-C asks the command's work to stop through this source.
     std::stop_source stop;
+    // Every plugin flag of the command line, to name flags in messages.
+    FlagNames flag_names;
     // The run function of each subcommand, by subcommand name.
     std::map<std::string, std::function<int()>> commands;
 

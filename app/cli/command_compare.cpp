@@ -2,17 +2,15 @@
 // --keep N --out DIR [--truth labels.nrrd]`: the comparison study.  The
 // contour tree is computed once; every simplifier decomposes and cuts it
 // with its own importance, so the runs differ in nothing else.
+#include "command_pipeline.hpp"
 #include "commands.hpp"
 #include "comparison_report.hpp"
+#include "input_flags.hpp"
 #include "label_slices.hpp"
+#include "look_flags.hpp"
 #include "priority_lines.hpp"
-#include "plugin_choice.hpp"
-#include "topology_run.hpp"
-#include "filter_input.hpp"
-#include "volume_input.hpp"
 
-#include "host/simplifier_importance.hpp"
-#include "host/volume_import.hpp"
+#include "pipeline/branch_importance.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -24,12 +22,14 @@ namespace arbor::cli {
 
 namespace {
 
+using pipeline::Stage;
+
 struct CompareArgs {
-    VolumeInput input;
-    FilterInput filter;
-    PluginChoice simplifiers{ARBOR_KIND_SIMPLIFIER, "simplifier"};
+    InputFlags input;
+    FilterFlags filter;
+    SimplifierFlags simplifier;
     std::string list = "itri,persistence,volume,hypervolume";
-    CutRequest cut;
+    CutFlags cut;
     std::string out, truth;
 };
 
@@ -39,30 +39,14 @@ constexpr std::size_t kMaxPriorityColumns = 600;
 // the first simplifier's decomposition (so every row shows the same
 // branches), and the level its own cut corresponds to.
 std::vector<PriorityRow> priority_rows(const std::vector<ComparedSimplifier> &runs,
-                                       const std::vector<PluginInstance *> &plugins, const CutRequest &request)
+                                       const pipeline::PluginCatalog &catalog, const pipeline::CutChoice &request)
 {
     const topology::BranchDecomposition &ref = runs[0].run.branches;
-    const std::size_t n = ref.branches.size();
     std::vector<PriorityRow> rows;
-    std::vector<topology::BranchMeasures> batch;
-    std::vector<double> values;
-    for (std::size_t r = 0; r < runs.size(); ++r) {
-        const topology::ImportanceFn importance = simplifier_importance(*plugins[r]);
+    for (const ComparedSimplifier &run : runs) {
         PriorityRow row;
-        row.name = runs[r].run.name;
-        row.values.reserve(n > 0 ? n - 1 : 0);
-        for (std::size_t start = 1; start < n; start += 4096) {
-            batch.clear();
-            for (std::size_t b = start; b < std::min(n, start + 4096); ++b) {
-                topology::BranchMeasures m;
-                m.absolute = ref.branches[b].measures;
-                for (int c = 0; c < topology::kMeasureCount; ++c)
-                    m.relative[static_cast<std::size_t>(c)] = ref.relative(static_cast<uint32_t>(b), c);
-                batch.push_back(m);
-            }
-            importance(batch, values);
-            row.values.insert(row.values.end(), values.begin(), values.end());
-        }
+        row.name = run.run.name;
+        row.values = pipeline::branch_importance(catalog, run.run.cut_result->decomposition->simplifier, ref);
         if (request.threshold) {
             row.threshold = *request.threshold;
         } else {
@@ -97,10 +81,14 @@ std::vector<PriorityRow> priority_rows(const std::vector<ComparedSimplifier> &ru
     return rows;
 }
 
-Volume load_truth(const std::string &path, Context &context)
+// The ground truth, read as any input is (through its importer).
+std::shared_ptr<const Volume> load_truth(const std::string &path, Context &context)
 {
-    PluginInstance importer = context.registry.create(choose_importer(context.registry, path));
-    return import_volume(importer, path, &context.progress, context.max_volume_bytes, context.stop.get_token());
+    CommandPipeline p(context, false);
+    pipeline::Document d = pipeline::default_document();
+    d.input.path = path;
+    p->set_document(d);
+    return p.run<Stage::Import>()->volume;
 }
 
 } // namespace
@@ -116,46 +104,57 @@ void add_compare_command(CLI::App &app, Context &context)
                     "Comma-separated simplifier plugins (ids or their last parts); the first one's branches are "
                     "the columns of the priority lines")
         ->default_val("itri,persistence,volume,hypervolume");
-    add_cut_options(*sub, a->cut, "Instead of --keep: keep branches whose importance exceeds T");
+    a->cut.add_to(*sub, "Instead of --keep: keep branches whose importance exceeds T");
     sub->add_option("--out", a->out, "Folder for report.json, report.csv, report.md and the PNGs")->required();
     sub->add_option("--truth", a->truth,
                     "Ground-truth label map with the volume's dims (any importable format): Dice per label");
-    a->simplifiers.add_to(*sub, context, "Simplifier options");
+    a->simplifier.add_to(*sub, context, false);
+    a->simplifier.used_with_several();
     context.add_command(sub, [a, &context]() {
-        if (!a->cut.keep && !a->cut.threshold)
+        if (!a->cut.given())
             throw std::invalid_argument("give --keep N or --threshold T");
-        std::vector<PluginInstance *> plugins;
-        for (const std::string &name : split_names(a->list)) {
-            PluginInstance *p = &a->simplifiers.resolve(name);
-            if (std::find(plugins.begin(), plugins.end(), p) != plugins.end())
-                throw std::invalid_argument("--simplifiers names " + p->id() + " twice");
-            plugins.push_back(p);
+        const std::vector<std::string> keeps = a->cut.keeps();
+        if (keeps.size() > 1)
+            throw std::invalid_argument("--keep takes one value in `arbor compare`");
+        CommandPipeline p(context, !a->input.no_cache());
+        const pipeline::PluginCatalog &catalog = p->catalog();
+        pipeline::Document d = pipeline::default_document();
+        a->input.apply(d.input, catalog);
+        a->filter.apply(d.filters, catalog);
+        a->cut.apply(d.cut, keeps.empty() ? std::nullopt : std::optional(keeps[0]));
+        std::vector<pipeline::PluginSetting> simplifiers;
+        for (const std::string &name : split_list(a->list)) {
+            pipeline::PluginSetting s;
+            a->simplifier.apply(s, name, catalog);
+            if (std::any_of(simplifiers.begin(), simplifiers.end(), [&](const auto &x) { return x.id == s.id; }))
+                throw std::invalid_argument("--simplifiers names " + s.id + " twice");
+            simplifiers.push_back(std::move(s));
         }
-        if (plugins.empty())
+        if (simplifiers.empty())
             throw std::invalid_argument("--simplifiers is empty");
-        LoadedVolume in = a->input.load();
-        a->filter.apply(in, context);
-        std::optional<Volume> truth;
+        d.simplifier = simplifiers.front();
+        p->set_document(d);
+        const auto filtered = p.run<Stage::Filter>();
+        std::shared_ptr<const Volume> truth;
         if (!a->truth.empty()) {
             truth = load_truth(a->truth, context);
-            if (truth->geometry().dims != in.volume.geometry().dims)
+            if (truth->geometry().dims != filtered->volume->geometry().dims)
                 throw std::invalid_argument(a->truth + ": the ground truth's dims differ from the volume's");
         }
         std::filesystem::create_directories(a->out);
 
-        const topology::TopologyResult topo = run_contour_tree(in.volume, context);
+        const auto tree = p.run<Stage::ContourTree>();
         ComparisonStudy study;
-        study.source = in.source;
-        study.volume = &in.volume;
-        study.topology = &topo;
-        study.request = a->cut;
-        for (PluginInstance *p : plugins) {
-            ComparedSimplifier c;
-            c.run = simplify_tree(topo.tree, in.volume, *p, a->cut, context);
-            c.labels = topology::label_voxels(topo.tree, c.run.branches, c.run.cut);
-            study.runs.push_back(std::move(c));
+        study.source = filtered->source;
+        study.volume = filtered->volume.get();
+        study.tree = tree.get();
+        study.request = d.cut;
+        for (const pipeline::PluginSetting &s : simplifiers) {
+            p->set_simplifier(s);
+            const auto cut = p.run<Stage::Cut>();
+            study.runs.emplace_back(cut, p.run<Stage::Labels>());
         }
-        study.overlaps = kept_overlaps(study.runs, topo.tree);
+        study.overlaps = kept_overlaps(study.runs, tree->tree);
         if (truth) {
             study.truth_source = a->truth;
             study.truth = truth_scores(*truth, study.runs);
@@ -164,19 +163,19 @@ void add_compare_command(CLI::App &app, Context &context)
         const std::filesystem::path dir(a->out);
         write_priority_lines(dir / "priority-lines.png",
                              "Priority lines: branches of " + study.runs[0].run.id + " decomposition, " +
-                                 a->cut.describe(),
-                             priority_rows(study.runs, plugins, a->cut));
+                                 d.cut.describe(),
+                             priority_rows(study.runs, catalog, d.cut));
         std::vector<LabelPanel> panels;
         for (const ComparedSimplifier &c : study.runs)
             panels.push_back({c.run.name + " (" + std::to_string(c.run.cut.kept.size()) + ")", &c.labels});
-        write_label_slices(dir / "labels-axial.png", in.volume, panels);
+        write_label_slices(dir / "labels-axial.png", *filtered->volume, panels);
         study.images = {"priority-lines.png", "labels-axial.png"};
         write_report_json(dir / "report.json", study);
         write_report_csv(dir / "report.csv", study);
         write_report_markdown(dir / "report.md", study);
 
-        std::printf("%s: contour tree of %zu nodes in %.2f s\n", in.source.c_str(), topo.tree.node_count(),
-                    topo.total_seconds);
+        std::printf("%s: contour tree of %zu nodes in %.2f s\n", filtered->source.c_str(), tree->tree.node_count(),
+                    tree->seconds);
         for (const ComparedSimplifier &c : study.runs)
             std::printf("  %-34s %8zu branches, %4zu kept, %.2f s\n", c.run.id.c_str(), c.run.branches.branches.size(),
                         c.run.cut.kept.size(), c.run.seconds);

@@ -1,8 +1,8 @@
 // `arbor convert`: read any supported volume (or a phantom), optionally run a
 // filter plugin on it, and write NRRD.  Filter parameters become flags.
+#include "command_pipeline.hpp"
 #include "commands.hpp"
-#include "filter_input.hpp"
-#include "volume_input.hpp"
+#include "input_flags.hpp"
 
 #include "io/nrrd_writer.hpp"
 
@@ -14,8 +14,8 @@ namespace arbor::cli {
 namespace {
 
 struct ConvertArgs {
-    VolumeInput input;
-    FilterInput filter;
+    InputFlags input;
+    FilterFlags filter;
     std::string output;
     bool raw = false;
 };
@@ -32,12 +32,16 @@ void add_convert_command(CLI::App &app, Context &context)
     sub->add_option("-o,--output", a->output, "Output NRRD file")->required();
     sub->add_flag("--raw", a->raw, "Write raw (uncompressed) voxel data");
     context.add_command(sub, [a, &context]() {
-        LoadedVolume in = a->input.load();
-        a->filter.apply(in, context);
+        CommandPipeline p(context, false);
+        pipeline::Document d = pipeline::default_document();
+        a->input.apply(d.input, p->catalog());
+        a->filter.apply(d.filters, p->catalog());
+        p->set_document(d);
+        const pipeline::FilterResult &in = *p.run<pipeline::Stage::Filter>();
         io::NrrdWriteOptions w;
         w.gzip = !a->raw;
         w.content = in.source;
-        io::write_nrrd(in.volume, a->output, w);
+        io::write_nrrd(*in.volume, a->output, w);
         std::printf("wrote %s\n", a->output.c_str());
         return 0;
     });

@@ -4,15 +4,11 @@
 // and extremum counts against strength, log scale) with the plateau it
 // suggests marked: the first strength after which stronger filtering stops
 // paying off, where noise is gone but structures are not yet melting.
+#include "command_pipeline.hpp"
 #include "commands.hpp"
-#include "plugin_choice.hpp"
-#include "topology_run.hpp"
-#include "volume_input.hpp"
+#include "input_flags.hpp"
 
 #include "core/atomic_file.hpp"
-#include "core/stopwatch.hpp"
-#include "host/filter_run.hpp"
-#include "host/param_text.hpp"
 #include "io/png_output.hpp"
 
 #include <opencv2/imgproc.hpp>
@@ -26,8 +22,8 @@ namespace arbor::cli {
 namespace {
 
 struct StudyArgs {
-    VolumeInput input;
-    PluginChoice filters{ARBOR_KIND_FILTER, "filter"};
+    InputFlags input;
+    PluginFlags filter_flags;
     std::string filter = "gaussian", param = "sigma", out;
     double from = 0.0, to = 4.0;
     int steps = 9;
@@ -125,39 +121,51 @@ void add_denoise_study_command(CLI::App &app, Context &context)
     sub->add_option("--to", a->to, "Last strength")->default_val(4.0);
     sub->add_option("--steps", a->steps, "Strengths from --from to --to")->check(CLI::Range(2, 100))->default_val(9);
     sub->add_option("--out", a->out, "Folder for study.csv and study.png")->required();
-    a->filters.add_to(*sub, context, "Filter options");
+    a->filter_flags.add(*sub, context.registry, ARBOR_KIND_FILTER, "Filter options");
+    context.flag_names.add(a->filter_flags);
     context.add_command(sub, [a, &context]() {
-        PluginInstance &filter = a->filters.resolve(a->filter);
-        const arbor_param_desc *d = filter.find_param(a->param);
+        CommandPipeline p(context, !a->input.no_cache());
+        const pipeline::PluginCatalog &catalog = p->catalog();
+        pipeline::PluginSetting filter{catalog.find(ARBOR_KIND_FILTER, a->filter), "", {}};
+        a->filter_flags.apply(filter);
+        const arbor_param_desc *d = nullptr;
+        for (const arbor_param_desc *x : catalog.descriptions(filter.id))
+            if (a->param == x->id)
+                d = x;
         if (!d)
-            throw std::invalid_argument(filter.id() + " has no parameter '" + a->param + "'");
-        const LoadedVolume in = a->input.load();
+            throw std::invalid_argument(filter.id + " has no parameter '" + a->param + "'");
+        pipeline::Document doc = pipeline::default_document();
+        a->input.apply(doc.input, catalog);
+        p->set_document(doc);
+        const auto imported = p.run<pipeline::Stage::Import>();
         std::filesystem::create_directories(a->out);
         std::vector<StudyPoint> points;
         for (int i = 0; i < a->steps; ++i) {
-            StudyPoint p;
-            p.strength = a->from + (a->to - a->from) * i / (a->steps - 1.0);
-            Stopwatch watch;
-            const bool identity = p.strength == 0.0 && a->param == "sigma";
-            Volume filtered;
-            if (!identity) {
+            StudyPoint point;
+            point.strength = a->from + (a->to - a->from) * i / (a->steps - 1.0);
+            // Strength 0 of the gaussian is the unfiltered volume.
+            std::vector<pipeline::PluginSetting> chain;
+            if (!(point.strength == 0.0 && a->param == "sigma")) {
                 char text[64];
-                std::snprintf(text, sizeof text, "%.17g", p.strength);
-                filter.set_param(a->param, parse_param_value(*d, text).value);
-                filtered = run_filter(filter, in.volume, &context.progress, context.max_volume_bytes, context.stop.get_token());
+                std::snprintf(text, sizeof text, "%.17g", point.strength);
+                pipeline::PluginSetting step = filter;
+                step.params[a->param] = text;
+                chain.push_back(step);
             }
-            const topology::TopologyResult topo = run_contour_tree(identity ? in.volume : filtered, context);
-            p.seconds = watch.lap();
-            for (std::size_t x = 0; x < topo.tree.node_count(); ++x) {
-                p.minima += topo.tree.node_kind[x] == topology::NodeKind::Minimum;
-                p.maxima += topo.tree.node_kind[x] == topology::NodeKind::Maximum;
+            p->set_filters(chain);
+            const auto tree = p.run<pipeline::Stage::ContourTree>();
+            point.seconds = p.run<pipeline::Stage::Filter>()->seconds + tree->seconds;
+            for (std::size_t x = 0; x < tree->tree.node_count(); ++x) {
+                point.minima += tree->tree.node_kind[x] == topology::NodeKind::Minimum;
+                point.maxima += tree->tree.node_kind[x] == topology::NodeKind::Maximum;
             }
             // Every extremum but the root's two pairs with a saddle: one branch each, plus the root.
-            p.branches = p.minima + p.maxima > 0 ? p.minima + p.maxima - 1 : 0;
-            std::printf("  %s = %-8g %10zu branches %10zu minima %10zu maxima  %.2f s\n", a->param.c_str(),
-                        p.strength, p.branches, p.minima, p.maxima, p.seconds);
+            point.branches = point.minima + point.maxima > 0 ? point.minima + point.maxima - 1 : 0;
+            std::printf("  %s = %-8g %10zu branches %10zu minima %10zu maxima  %.2f s%s\n", a->param.c_str(),
+                        point.strength, point.branches, point.minima, point.maxima, point.seconds,
+                        tree->from_cache ? " (tree from the cache)" : "");
             std::fflush(stdout);
-            points.push_back(p);
+            points.push_back(point);
         }
         const std::size_t plateau = plateau_of(points);
         const std::filesystem::path dir(a->out);
@@ -169,9 +177,9 @@ void add_denoise_study_command(CLI::App &app, Context &context)
                       std::to_string(points[i].seconds) + "," +
                       (i == plateau ? "1" : "0") + "\n");
         csv.commit();
-        plot(dir / "study.png", points, plateau, "Contour tree size of " + in.source + " under " + filter.id(),
+        plot(dir / "study.png", points, plateau, "Contour tree size of " + imported->source + " under " + filter.id,
              a->param + " (" + (d->unit && *d->unit ? d->unit : "") + ")");
-        std::printf("%s: suggested %s = %g (%zu branches, from %zu unfiltered) -> %s\n", in.source.c_str(),
+        std::printf("%s: suggested %s = %g (%zu branches, from %zu unfiltered) -> %s\n", imported->source.c_str(),
                     a->param.c_str(), points[plateau].strength, points[plateau].branches, points.front().branches,
                     (dir / "study.png").string().c_str());
         return 0;

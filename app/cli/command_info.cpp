@@ -1,7 +1,8 @@
 // `arbor info <volume>`: what a volume is (dims, type, geometry, value range
 // in stored and physical units, histogram summary), as text or JSON.
+#include "command_pipeline.hpp"
 #include "commands.hpp"
-#include "volume_input.hpp"
+#include "input_flags.hpp"
 
 #include "core/volume_header.hpp"
 #include "core/volume_statistics.hpp"
@@ -41,15 +42,15 @@ std::string sparkline(const std::vector<int64_t> &h, std::size_t width)
     return s;
 }
 
-nlohmann::json to_json(const LoadedVolume &in, const VolumeStatistics &st)
+nlohmann::json to_json(const pipeline::ImportResult &in, const VolumeStatistics &st)
 {
-    const Volume &v = in.volume;
+    const Volume &v = *in.volume;
     const Geometry &g = v.geometry();
     const ValueMapping &m = v.mapping();
     nlohmann::json j;
     j["source"] = in.source;
-    if (!in.importer_id.empty())
-        j["importer"] = {{"id", in.importer_id}, {"version", in.importer_version}};
+    if (!in.importer.empty())
+        j["importer"] = {{"id", in.importer.id}, {"version", in.importer.version}};
     j["dims"] = g.dims;
     j["voxel_count"] = v.voxel_count();
     j["voxel_type"] = arbor_voxel_type_name(v.type());
@@ -77,14 +78,14 @@ nlohmann::json to_json(const LoadedVolume &in, const VolumeStatistics &st)
     return j;
 }
 
-void print_text(const LoadedVolume &in, const VolumeStatistics &st)
+void print_text(const pipeline::ImportResult &in, const VolumeStatistics &st)
 {
-    const Volume &v = in.volume;
+    const Volume &v = *in.volume;
     const Geometry &g = v.geometry();
     const ValueMapping &m = v.mapping();
     std::printf("Source      %s\n", in.source.c_str());
-    if (!in.importer_id.empty())
-        std::printf("Importer    %s %s\n", in.importer_id.c_str(), in.importer_version.c_str());
+    if (!in.importer.empty())
+        std::printf("Importer    %s %s\n", in.importer.id.c_str(), in.importer.version.c_str());
     std::printf("Dimensions  %lld x %lld x %lld (%lld voxels)\n", static_cast<long long>(g.dims[0]),
                 static_cast<long long>(g.dims[1]), static_cast<long long>(g.dims[2]),
                 static_cast<long long>(v.voxel_count()));
@@ -126,13 +127,17 @@ void add_info_command(CLI::App &app, Context &context)
 {
     CLI::App *sub = app.add_subcommand(
         "info", "Describe a volume: dims, type, geometry, value range, histogram");
-    auto input = std::make_shared<VolumeInput>();
+    auto input = std::make_shared<InputFlags>();
     auto json = std::make_shared<bool>(false);
     input->add_to(*sub, context);
     sub->add_flag("--json", *json, "Print JSON instead of text");
-    context.add_command(sub, [input, json]() {
-        const LoadedVolume in = input->load();
-        const VolumeStatistics st = compute_statistics(in.volume, 64);
+    context.add_command(sub, [input, json, &context]() {
+        CommandPipeline p(context, false);
+        pipeline::Document d = pipeline::default_document();
+        input->apply(d.input, p->catalog());
+        p->set_document(d);
+        const pipeline::ImportResult &in = *p.run<pipeline::Stage::Import>();
+        const VolumeStatistics st = compute_statistics(*in.volume, 64);
         if (*json)
             std::cout << to_json(in, st).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
         else

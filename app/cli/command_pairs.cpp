@@ -1,9 +1,9 @@
 // `arbor pairs <volume> -o pairs.txt`: the saddle-extremum pairs of the
 // persistence branch decomposition, in the columns of the TTK reference files.
+#include "command_pipeline.hpp"
 #include "commands.hpp"
-#include "topology_run.hpp"
-#include "filter_input.hpp"
-#include "volume_input.hpp"
+#include "input_flags.hpp"
+#include "stage_timings.hpp"
 
 #include "core/atomic_file.hpp"
 #include "topology/persistence_pairs.hpp"
@@ -16,9 +16,11 @@ namespace arbor::cli {
 
 namespace {
 
+using pipeline::Stage;
+
 struct PairsArgs {
-    VolumeInput input;
-    FilterInput filter;
+    InputFlags input;
+    FilterFlags filter;
     std::string output;
     bool timings = false;
 };
@@ -35,15 +37,21 @@ void add_pairs_command(CLI::App &app, Context &context)
     sub->add_option("-o,--output", a->output, "Output text file ('-' for standard output)")->required();
     sub->add_flag("--timings", a->timings, "Print per-stage seconds and peak memory on stderr");
     context.add_command(sub, [a, &context]() {
-        LoadedVolume in = a->input.load();
-        a->filter.apply(in, context);
-        const topology::TopologyResult topo = run_topology(in.volume, topology::persistence_importance(), context);
-        const topology::FieldView field{in.volume.type(), in.volume.data(),
-                                        static_cast<uint32_t>(in.volume.voxel_count()),
-                                        &in.volume.geometry()};
-        const auto pairs = topology::persistence_pairs(topo.tree, topo.branches, field);
+        CommandPipeline p(context, !a->input.no_cache());
+        pipeline::Document d = pipeline::default_document();
+        a->input.apply(d.input, p->catalog());
+        a->filter.apply(d.filters, p->catalog());
+        d.simplifier = {"persistence", "", {}};
+        p->set_document(d);
+        const auto filtered = p.run<Stage::Filter>();
+        const auto tree = p.run<Stage::ContourTree>();
+        const auto decomposition = p.run<Stage::Decomposition>();
+        const Volume &volume = *filtered->volume;
+        const topology::FieldView field{volume.type(), volume.data(), static_cast<uint32_t>(volume.voxel_count()),
+                                        &volume.geometry()};
+        const auto pairs = topology::persistence_pairs(tree->tree, decomposition->branches, field);
         std::ostringstream text;
-        topology::write_persistence_pairs(text, pairs, in.volume.geometry(), in.volume.type(), in.source);
+        topology::write_persistence_pairs(text, pairs, volume.geometry(), volume.type(), filtered->source);
         if (a->output == "-") {
             std::fputs(text.str().c_str(), stdout);
         } else {
@@ -52,7 +60,7 @@ void add_pairs_command(CLI::App &app, Context &context)
             out.commit();
         }
         if (a->timings)
-            print_timings(topo, in.volume);
+            print_timings(*tree, decomposition.get(), volume);
         return 0;
     });
 }

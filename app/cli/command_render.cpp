@@ -1,17 +1,15 @@
 // `arbor render <volume> --tf tf.json -o image.png`: renders with transfer
 // functions written by `arbor tf` (or edited since).  The labels are rebuilt
-// from the volume with the simplifier and cut the file records, and checked
-// against the file's branches, so functions made for another volume or
-// another simplification are refused instead of misapplied.
+// from the volume with the simplifier and cut the file records, and the
+// pipeline checks them against the file's branches, so functions made for
+// another volume or another simplification are refused instead of misapplied.
+#include "command_pipeline.hpp"
 #include "commands.hpp"
-#include "render_options.hpp"
-#include "simplification_run.hpp"
-#include "topology_run.hpp"
-#include "transfer_function_json.hpp"
-#include "filter_input.hpp"
-#include "volume_input.hpp"
+#include "input_flags.hpp"
+#include "view_flags.hpp"
 
 #include "io/image_output.hpp"
+#include "pipeline/transfer_function_file.hpp"
 
 #include <cstdio>
 #include <memory>
@@ -20,11 +18,12 @@ namespace arbor::cli {
 
 namespace {
 
+using pipeline::Stage;
+
 struct RenderArgs {
-    VolumeInput input;
-    FilterInput filter;
-    PluginChoice simplifiers{ARBOR_KIND_SIMPLIFIER, "simplifier"};
-    RenderOptions render;
+    InputFlags input;
+    FilterFlags filter;
+    ViewFlags view;
     std::string tf, output;
 };
 
@@ -38,30 +37,24 @@ void add_render_command(CLI::App &app, Context &context)
     a->filter.add_to(*sub, context);
     sub->add_option("--tf", a->tf, "Transfer functions (arbor-transfer-functions/1 JSON)")->required();
     sub->add_option("-o,--output", a->output, "Image to write (.png or .exr)")->required();
-    a->render.add_to(*sub, context);
-    a->simplifiers.add_to(*sub, context, "Simplifier options");
+    a->view.add_to(*sub, context);
     context.add_command(sub, [a, &context]() {
-        const StoredTransferFunctions stored = read_transfer_functions(a->tf);
-        const CutRequest cut = CutRequest::parse(stored.cut);
-        PluginInstance &simplifier = a->simplifiers.resolve(stored.simplifier_id);
-        LoadedVolume in = a->input.load();
-        a->filter.apply(in, context);
-        const topology::TopologyResult topo = run_contour_tree(in.volume, context);
-        const SimplifiedTree s = simplify_tree(topo.tree, in.volume, simplifier, cut, context);
-        const std::size_t n = stored.extremum_vertex.size();
-        bool same = s.cut.kept.size() == n;
-        for (std::size_t k = 0; same && k < n; ++k)
-            same = topo.tree.node_vertex[s.branches.branches[s.cut.kept[k]].extremum_node] ==
-                   static_cast<uint32_t>(stored.extremum_vertex[k]);
-        if (!same)
-            throw std::invalid_argument(a->tf + ": its " + std::to_string(n) + " branches (made from " + stored.source +
-                                        ") are not the branches " + stored.simplifier_id + " keeps in " + in.source +
-                                        " with " + stored.cut + "; regenerate them with `arbor tf`");
-        const std::vector<uint32_t> labels = topology::label_voxels(topo.tree, s.branches, s.cut);
-        const RenderedImage image = a->render.render(in.volume, labels, *stored.functions, context);
-        io::write_image(a->output, image);
-        std::printf("%s: %zu branches rendered by %s -> %s (%.0f%% covered)\n", in.source.c_str(), n,
-                    a->render.renderer().id().c_str(), a->output.c_str(), 100.0 * io::covered_fraction(image));
+        const pipeline::StoredTransferFunctions stored = pipeline::read_transfer_functions(a->tf);
+        CommandPipeline p(context, !a->input.no_cache());
+        const pipeline::PluginCatalog &catalog = p->catalog();
+        pipeline::Document d = pipeline::default_document();
+        a->input.apply(d.input, catalog);
+        a->filter.apply(d.filters, catalog);
+        d.simplifier = {stored.simplifier_id, "", {}};
+        d.cut = pipeline::CutChoice::parse(stored.cut);
+        d.appearance.transfer_functions_file = a->tf;
+        a->view.apply(d.view, catalog);
+        p->set_document(d);
+        const auto render = p.run<Stage::Render>();
+        io::write_image(a->output, render->image);
+        std::printf("%s: %u branches rendered by %s -> %s (%.0f%% covered)\n", p.run<Stage::Filter>()->source.c_str(),
+                    p.run<Stage::TransferFunctions>()->functions->branch_count(), render->renderer.id.c_str(),
+                    a->output.c_str(), 100.0 * io::covered_fraction(render->image));
         return 0;
     });
 }

@@ -1,21 +1,28 @@
-// `arbor run <volume | --phantom head> -o out.png`: the main job.  Import,
-// (filter), contour tree, ITri simplification (branch count from the knee of
-// the importance curve unless --keep/--threshold), residue-flow transfer
-// functions with the inclusion depiction, label-aware rendering; then the
-// image, the relation-wheel legend and a report that makes it reproducible.
+// `arbor run <volume | --phantom head | --session s.json> -o out.png`: the
+// main job.  Import, (filters), contour tree, ITri simplification (branch
+// count from the knee of the importance curve unless --keep/--threshold),
+// residue-flow transfer functions with the inclusion depiction, label-aware
+// rendering; then the image, the relation-wheel legend and a report that
+// makes it reproducible, and on request the session (--save-session) and the
+// label map that was rendered (--labels).
+//
+// Sweeps: --simplifier, --keep, --flow-rate, --shape and --hues take comma
+// lists; every combination is rendered from the one contour tree into its
+// own image (out-q30-ramp.png ...), beside a captioned contact sheet (out.png)
+// and one report with every run and how often each stage ran.
+#include "command_pipeline.hpp"
 #include "commands.hpp"
-#include "render_options.hpp"
+#include "input_flags.hpp"
+#include "look_flags.hpp"
 #include "run_report.hpp"
-#include "simplification_run.hpp"
-#include "topology_run.hpp"
-#include "transfer_function_stage.hpp"
-#include "filter_input.hpp"
-#include "volume_input.hpp"
+#include "view_flags.hpp"
 
 #include "core/stopwatch.hpp"
+#include "io/contact_sheet.hpp"
 #include "io/image_output.hpp"
-#include "io/png_output.hpp"
-#include "topology/importance_knee.hpp"
+#include "io/label_map_output.hpp"
+#include "io/legend_png.hpp"
+#include "pipeline/session.hpp"
 
 #include <cstdio>
 #include <memory>
@@ -24,20 +31,42 @@ namespace arbor::cli {
 
 namespace {
 
+namespace fs = std::filesystem;
+using pipeline::Stage;
+
 struct RunArgs {
-    VolumeInput input;
-    FilterInput filter;
-    PluginChoice simplifiers{ARBOR_KIND_SIMPLIFIER, "simplifier"};
-    TransferFunctionStage stage;
-    RenderOptions render;
-    std::string simplifier = "itri";
-    CutRequest cut;
-    std::string output, legend, report;
+    InputFlags input;
+    FilterFlags filter;
+    SimplifierFlags simplifier;
+    CutFlags cut;
+    AppearanceFlags look;
+    ViewFlags view;
+    std::string output, legend, report, session, save_session, labels;
 };
 
-std::filesystem::path beside(const std::filesystem::path &image, const std::string &suffix)
+// out.png + "-legend.png" -> out-legend.png
+fs::path beside(const fs::path &file, const std::string &suffix, const std::string &extension = "")
 {
-    return image.parent_path() / (image.stem().string() + suffix);
+    return file.parent_path() / (file.stem().string() + suffix + (extension.empty() ? file.extension().string() : extension));
+}
+
+pipeline::Document base_document(const RunArgs &a, const pipeline::PluginCatalog &catalog)
+{
+    if (a.session.empty())
+        return pipeline::default_document();
+    pipeline::SessionRead read = pipeline::read_session(a.session, catalog, !a.input.given());
+    for (const std::string &w : read.warnings)
+        log_message(ARBOR_LOG_WARNING, "", w);
+    return read.document;
+}
+
+// The session of a run: the document, with the importer as it was used (the
+// one probing chose, every parameter as read back after the import).
+pipeline::Document session_of(pipeline::Document d, const pipeline::ImportResult &import)
+{
+    if (!d.input.phantom)
+        d.input.importer = import.importer;
+    return d;
 }
 
 } // namespace
@@ -46,103 +75,134 @@ void add_run_command(CLI::App &app, Context &context)
 {
     CLI::App *sub = app.add_subcommand(
         "run", "The main job: topology-driven transfer functions and a rendered image of a volume");
+    sub->footer("Sessions: --save-session s.json writes every choice of the run (input, filters, plugins with all "
+                "their parameters, cut, selection, camera, image size, renderer); --session s.json reproduces it, "
+                "and any flag given beside it overrides the session's value.\n"
+                "Sweeps: --simplifier, --keep, --flow-rate, --shape and --hues take comma lists; every combination "
+                "is rendered from one contour tree (out-q30-ramp.png ...), with a contact sheet (out.png) and one "
+                "report.\n"
+                "The contour tree is cached on disk (keyed by the voxels it was built on): reopening a volume does "
+                "not rebuild it; --no-cache bypasses the cache.");
     auto a = std::make_shared<RunArgs>();
     a->input.add_to(*sub, context);
     a->filter.add_to(*sub, context);
-    sub->add_option("-o,--output", a->output, "Image to write (.png or .exr)")->required();
-    sub->add_option("--simplifier", a->simplifier, "Simplifier plugin (id or last part)")->default_val("itri");
-    add_cut_options(*sub, a->cut,
-                    "Keep branches whose relative importance exceeds T (default: the knee of the importance curve)");
+    sub->add_option("-o,--output", a->output,
+                    "Image to write (.png or .exr); for a sweep, the contact sheet (each run's image beside it)")
+        ->required();
+    sub->add_option("--session", a->session, "Start from this session (arbor-session/1); flags given override it")
+        ->group("Session");
+    sub->add_option("--save-session", a->save_session, "Write the session of this run (for a sweep: one per run)")
+        ->group("Session");
+    a->simplifier.add_to(*sub, context);
+    a->cut.add_to(*sub, "Keep branches whose relative importance exceeds T (default: the knee of the importance curve)");
+    sub->add_option("--labels", a->labels,
+                    "Write the label map that was rendered (NRRD, with a 3D Slicer colour table .ctbl beside it)");
     sub->add_option("--legend", a->legend, "Relation-wheel legend PNG (default: <output>-legend.png)");
     sub->add_option("--report", a->report, "Report JSON, with a Markdown twin (default: <output>.report.json)");
-    a->stage.add_to(*sub, context);
-    a->render.add_to(*sub, context);
-    a->simplifiers.add_to(*sub, context, "Simplifier options");
+    a->look.add_to(*sub, context);
+    a->view.add_to(*sub, context);
     context.add_command(sub, [a, &context]() {
-        a->stage.validate(false);
-        const std::filesystem::path output(a->output);
-        const std::filesystem::path legend_path = a->legend.empty() ? beside(output, "-legend.png") : std::filesystem::path(a->legend);
-        const std::filesystem::path report_path =
-            a->report.empty() ? beside(output, ".report.json") : std::filesystem::path(a->report);
-        for (const std::filesystem::path &p : {output, legend_path, report_path})
-            if (!p.parent_path().empty())
-                std::filesystem::create_directories(p.parent_path());
-        PluginInstance &simplifier = a->simplifiers.resolve(a->simplifier);
+        const fs::path output(a->output);
+        const std::string ext = output.extension().string();
+        if (ext != ".png" && ext != ".exr")
+            throw std::invalid_argument(output.string() + ": images are written as .png or .exr");
+        CommandPipeline p(context, !a->input.no_cache());
+        const pipeline::PluginCatalog &catalog = p->catalog();
+
+        pipeline::Document base = base_document(*a, catalog);
+        a->input.apply(base.input, catalog);
+        a->filter.apply(base.filters, catalog);
+        const SweepAxes axes{a->simplifier.names(), a->cut.keeps(), a->look.flow_rates(), a->look.shapes(),
+                             a->look.hues()};
+        const std::vector<SweepPoint> points = sweep_points(axes);
+        const bool sweep = points.size() > 1;
+        if (sweep && !a->legend.empty())
+            throw std::invalid_argument("--legend names one file; a sweep writes one legend beside each image");
+
+        const fs::path report_path = a->report.empty() ? beside(output, ".report", ".json") : fs::path(a->report);
+        for (const fs::path &f : {output, report_path})
+            if (!f.parent_path().empty())
+                fs::create_directories(f.parent_path());
 
         RunReport report;
-        Stopwatch clock;
-        LoadedVolume in = a->input.load();
-        report.stage("import", clock.lap());
-        const PluginInstance *filter = a->filter.apply(in, context);
-        if (filter)
-            report.stage("filter", clock.lap());
-        const topology::TopologyResult topo = run_contour_tree(in.volume, context);
-        report.stage("contour tree", clock.lap());
-        CutRequest cut = a->cut;
-        SimplifiedTree s;
-        if (!cut.keep && !cut.threshold) {
-            // Decompose once, find the knee, then cut there.
-            cut.keep = 1;
-            s = simplify_tree(topo.tree, in.volume, simplifier, cut, context);
-            const topology::KneeChoice knee = topology::knee_branch_count(s.branches);
-            cut.keep = knee.keep;
-            s.cut = topology::cut_by_count(s.branches, knee.keep);
-            report.knee = knee;
-        } else {
-            s = simplify_tree(topo.tree, in.volume, simplifier, cut, context);
+        std::vector<std::shared_ptr<const pipeline::LabelsResult>> labels;
+        for (const SweepPoint &point : points) {
+            pipeline::Document d = base;
+            a->simplifier.apply(d.simplifier, point.simplifier, catalog);
+            a->cut.apply(d.cut, point.keep);
+            a->look.apply(d.appearance, point, catalog);
+            a->view.apply(d.view, catalog);
+            p->set_document(d);
+
+            RenderedRun run;
+            run.name = point.name;
+            run.caption = point.caption;
+            run.render = p.run<Stage::Render>();
+            run.tf = p.run<Stage::TransferFunctions>();
+            run.cut = p.run<Stage::Cut>();
+            labels.push_back(p.run<Stage::Labels>());
+            run.document = p->document();
+            if (!run.document.appearance.legend.empty())
+                run.legend = p.run<Stage::Legend>();
+
+            Stopwatch watch;
+            run.image = sweep ? beside(output, "-" + point.name) : output;
+            io::write_image(run.image, run.render->image);
+            if (run.legend) {
+                run.legend_image = a->legend.empty() ? beside(run.image, "-legend", ".png") : fs::path(a->legend);
+                io::write_legend_png(run.legend_image, run.legend->size, run.legend->rgba);
+            }
+            run.coverage = io::covered_fraction(run.render->image);
+            if (!a->save_session.empty()) {
+                const fs::path s = sweep ? beside(a->save_session, "-" + point.name) : fs::path(a->save_session);
+                pipeline::write_session(s, session_of(run.document, *p.run<Stage::Import>()), catalog);
+                report.session = sweep ? fs::path() : s;
+            }
+            run.write_seconds = watch.lap();
+            report.runs.push_back(std::move(run));
         }
-        report.stage("simplification", clock.lap());
-        const BranchTreeRecord tree(topo.tree, s.branches, s.cut, in.volume);
-        const double range[2] = {s.branches.global_min, s.branches.global_max};
-        const TransferFunctionResult tf = a->stage.run(tree, in.volume, range, context);
-        report.stage("transfer functions", clock.lap());
-        const std::vector<uint32_t> labels = topology::label_voxels(topo.tree, s.branches, s.cut);
-        report.stage("labels", clock.lap());
-        const RenderedImage image = a->render.render(in.volume, labels, *tf.functions, context);
-        report.stage("render", clock.lap());
+        report.import = p.run<Stage::Import>();
+        report.filtered = p.run<Stage::Filter>();
+        report.tree = p.run<Stage::ContourTree>();
 
-        // The legend: the relation wheel around the selected branch, or the
-        // deepest one (the innermost structure).
-        uint32_t selected = 0;
-        for (uint32_t b = 0; b < tree.size(); ++b)
-            if (tree.record().depth[b] > tree.record().depth[selected])
-                selected = b;
-        if (a->stage.selected())
-            selected = static_cast<uint32_t>(*a->stage.selected());
-        arbor_depiction_request wheel = tf.request;
-        wheel.selected_branch = static_cast<int32_t>(selected);
-        PluginInstance &neighbour = a->stage.depictors().resolve("neighbour");
-        const cv::Mat legend = a->stage.legend(neighbour, wheel, 512);
-
-        io::write_image(output, image);
-        io::write_png(legend_path, legend);
-        report.stage("write", clock.lap());
-        report.source = in.source;
-        report.importer = in.importer_id.empty() ? "" : in.importer_id + " " + in.importer_version;
-        report.filter = filter;
-        report.volume = &in.volume;
-        report.topology = &topo;
-        report.simplified = &s;
-        report.cut = cut;
-        report.tree = &tree.record();
-        report.tf = &tf;
-        report.renderer = &a->render.renderer();
-        report.orbit = a->render.orbit();
-        report.width = image.width;
-        report.height = image.height;
-        report.coverage = io::covered_fraction(image);
-        report.image = output.string();
-        report.legend = legend_path.string();
-        report.legend_selected = selected;
+        if (!a->labels.empty()) {
+            // One map when every run rendered the same labels, else one per run.
+            const bool same = std::all_of(labels.begin(), labels.end(), [&](const auto &l) { return l == labels[0]; });
+            for (std::size_t i = 0; i < (same ? 1 : labels.size()); ++i) {
+                const fs::path path = same ? fs::path(a->labels) : beside(a->labels, "-" + points[i].name);
+                io::write_label_map(path, report.filtered->volume->geometry(),
+                                    "arbor labels of " + report.filtered->source, labels[i]->labels, labels[i]->names);
+            }
+            report.labels = same ? fs::path(a->labels) : fs::path();
+        }
+        if (sweep) {
+            report.contact_sheet = beside(output, "", ".png");
+            std::vector<io::ContactSheetTile> tiles;
+            for (const RenderedRun &run : report.runs)
+                tiles.push_back({&run.render->image, run.caption});
+            io::write_contact_sheet(report.contact_sheet, report.filtered->source, tiles);
+        }
+        report.stage_runs = p->stage_runs();
         write_run_report(report_path, report);
 
-        std::printf("%s: %zu branches, %zu kept (%s), %ux%u image, %.0f%% of it covered\n", in.source.c_str(),
-                    s.branches.branches.size(), s.cut.kept.size(),
-                    report.knee ? "knee of the ITri curve" : cut.describe().c_str(), image.width, image.height,
-                    100.0 * report.coverage);
-        std::printf("image:  %s\nlegend: %s\nreport: %s and %s\n", output.string().c_str(),
-                    legend_path.string().c_str(), report_path.string().c_str(),
-                    report_path.parent_path().append(report_path.stem().string() + ".md").string().c_str());
+        for (const RenderedRun &run : report.runs) {
+            const pipeline::CutResult &cut = *run.cut;
+            std::printf("%s%s: %zu branches, %zu kept (%s), %ux%u image, %.0f%% of it covered\n",
+                        report.filtered->source.c_str(), run.caption.empty() ? "" : (" [" + run.caption + "]").c_str(),
+                        cut.decomposition->branches.branches.size(), cut.kept(),
+                        cut.knee ? "knee of the ITri curve" : cut.requested.describe().c_str(),
+                        run.render->image.width, run.render->image.height, 100.0 * run.coverage);
+        }
+        if (sweep)
+            std::printf("images: %zu beside %s (the contact sheet)\n", report.runs.size(),
+                        report.contact_sheet.string().c_str());
+        else
+            std::printf("image:  %s\nlegend: %s\n", output.string().c_str(),
+                        report.runs[0].legend_image.string().c_str());
+        std::printf("report: %s and %s\n", report_path.string().c_str(),
+                    beside(report_path, "", ".md").string().c_str());
+        if (!report.session.empty())
+            std::printf("session: %s\n", report.session.string().c_str());
         return 0;
     });
 }

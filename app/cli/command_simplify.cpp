@@ -2,12 +2,11 @@
 // --json out.json [--labels labels.nrrd]`: the contour tree simplified by
 // one simplifier plugin, its kept branches with measures and importance,
 // and the voxel -> branch label map.
+#include "command_pipeline.hpp"
 #include "commands.hpp"
-#include "simplification_run.hpp"
-#include "plugin_choice.hpp"
-#include "topology_run.hpp"
-#include "filter_input.hpp"
-#include "volume_input.hpp"
+#include "input_flags.hpp"
+#include "look_flags.hpp"
+#include "stage_timings.hpp"
 
 #include "io/label_map_output.hpp"
 #include "io/topology_json.hpp"
@@ -19,32 +18,42 @@ namespace arbor::cli {
 
 namespace {
 
+using pipeline::Stage;
+
 struct SimplifyArgs {
-    VolumeInput input;
-    FilterInput filter;
-    PluginChoice simplifiers{ARBOR_KIND_SIMPLIFIER, "simplifier"};
-    std::string simplifier = "itri";
-    CutRequest cut;
+    InputFlags input;
+    FilterFlags filter;
+    SimplifierFlags simplifier;
+    CutFlags cut;
     std::string json, labels;
     bool timings = false;
 };
 
-void write_json(const std::string &path, const LoadedVolume &in, const topology::TopologyResult &topo,
-                const SimplifiedTree &s, const CutRequest &request)
+void write_json(const std::string &path, const pipeline::FilterResult &in, const pipeline::ContourTreeResult &tree,
+                const pipeline::CutResult &cut)
 {
+    const pipeline::DecompositionResult &d = *cut.decomposition;
     io::write_json_file(path, io::JsonLayout::indented, [&](io::JsonWriter &j) {
         j.field("format", "arbor-simplified-tree/1");
-        io::write_volume_summary(j, in.source, in.volume.geometry());
+        io::write_volume_summary(j, in.source, in.volume->geometry());
         {
             const io::JsonWriter::Scope simplifier = j.object("simplifier");
-            write_simplifier_fields(j, s);
+            j.field("id", d.simplifier.id);
+            j.field("name", d.simplifier_name);
+            j.field("version", d.simplifier.version);
         }
-        write_cut(j, request);
-        io::write_contour_tree_summary(j, topo.tree, topo.total_seconds, s.branches.branches.size());
-        write_kept_branches(j, "kept_branches", topo.tree, in.volume, s);
+        {
+            const io::JsonWriter::Scope c = j.object("cut");
+            if (cut.requested.keep)
+                j.field("keep", *cut.requested.keep);
+            else
+                j.field("threshold", cut.requested.threshold.value_or(0.0));
+        }
+        io::write_contour_tree_summary(j, tree.tree, tree.seconds, d.branches.branches.size());
+        io::write_kept_branches(j, "kept_branches", tree.tree, *in.volume, d.branches, cut.cut);
         const io::JsonWriter::Scope seconds = j.object("seconds");
-        j.field("contour_tree", topo.total_seconds);
-        j.field("simplification", s.seconds);
+        j.field("contour_tree", tree.seconds);
+        j.field("simplification", d.seconds + cut.seconds);
     });
 }
 
@@ -57,40 +66,40 @@ void add_simplify_command(CLI::App &app, Context &context)
     auto a = std::make_shared<SimplifyArgs>();
     a->input.add_to(*sub, context);
     a->filter.add_to(*sub, context);
-    sub->add_option("--simplifier", a->simplifier,
-                    "Simplifier plugin: an id or its last part (itri, persistence, volume, hypervolume, "
-                    "n-measure)")
-        ->default_val("itri");
-    add_cut_options(*sub, a->cut,
-                    "Keep branches whose relative importance exceeds T (ITri and n-measure importances are "
-                    "products of relative measures: small numbers)");
-    sub->add_option("--json", a->json, "Write the kept branches with measures and importance as JSON")
-        ->required();
+    a->simplifier.add_to(*sub, context);
+    a->cut.add_to(*sub, "Keep branches whose relative importance exceeds T (ITri and n-measure importances are "
+                        "products of relative measures: small numbers)");
+    sub->add_option("--json", a->json, "Write the kept branches with measures and importance as JSON")->required();
     sub->add_option("--labels", a->labels,
                     "Write the voxel -> branch label map as NRRD, with a 3D Slicer colour table (.ctbl) beside it");
     sub->add_flag("--timings", a->timings, "Print per-stage seconds and peak memory on stderr");
-    a->simplifiers.add_to(*sub, context, "Simplifier options");
     context.add_command(sub, [a, &context]() {
-        if (!a->cut.keep && !a->cut.threshold)
+        if (!a->cut.given())
             throw std::invalid_argument("give --keep N or --threshold T");
-        PluginInstance &simplifier = a->simplifiers.resolve(a->simplifier);
-        LoadedVolume in = a->input.load();
-        a->filter.apply(in, context);
-        topology::TopologyResult topo = run_contour_tree(in.volume, context);
-        SimplifiedTree s = simplify_tree(topo.tree, in.volume, simplifier, a->cut, context);
-        write_json(a->json, in, topo, s, a->cut);
-        if (!a->labels.empty())
-            io::write_label_map(a->labels, in.volume.geometry(), "arbor " + s.id + " labels of " + in.source,
-                                topology::label_voxels(topo.tree, s.branches, s.cut),
-                                kept_label_names(s.branches, s.cut));
-        std::printf("%s: %zu branches, %zu kept by %s (%s) -> %s\n", in.source.c_str(), s.branches.branches.size(),
-                    s.cut.kept.size(), s.id.c_str(), a->cut.describe().c_str(), a->json.c_str());
-        if (a->timings) {
-            topo.timings.push_back({"simplification", s.seconds});
-            topo.total_seconds += s.seconds;
-            topo.branches = std::move(s.branches); // for the branch count
-            print_timings(topo, in.volume);
+        refuse_lists({a->simplifier.names(), a->cut.keeps(), {}, {}, {}}, "simplify");
+        CommandPipeline p(context, !a->input.no_cache());
+        pipeline::Document d = pipeline::default_document();
+        a->input.apply(d.input, p->catalog());
+        a->filter.apply(d.filters, p->catalog());
+        const std::vector<std::string> names = a->simplifier.names(), keeps = a->cut.keeps();
+        a->simplifier.apply(d.simplifier, names.empty() ? std::nullopt : std::optional(names[0]), p->catalog());
+        a->cut.apply(d.cut, keeps.empty() ? std::nullopt : std::optional(keeps[0]));
+        p->set_document(d);
+        const auto filtered = p.run<Stage::Filter>();
+        const auto tree = p.run<Stage::ContourTree>();
+        const auto cut = p.run<Stage::Cut>();
+        write_json(a->json, *filtered, *tree, *cut);
+        if (!a->labels.empty()) {
+            const auto labels = p.run<Stage::Labels>();
+            io::write_label_map(a->labels, filtered->volume->geometry(),
+                                "arbor " + cut->decomposition->simplifier.id + " labels of " + filtered->source,
+                                labels->labels, labels->names);
         }
+        std::printf("%s: %zu branches, %zu kept by %s (%s) -> %s\n", filtered->source.c_str(),
+                    cut->decomposition->branches.branches.size(), cut->kept(),
+                    cut->decomposition->simplifier.id.c_str(), cut->requested.describe().c_str(), a->json.c_str());
+        if (a->timings)
+            print_timings(*tree, cut->decomposition.get(), *filtered->volume);
         return 0;
     });
 }

@@ -3,15 +3,13 @@
 // relationship (inclusion by default; neighbour around --select), and a
 // generator (residue flow by default) writes one transfer function per kept
 // branch.  The generator sees the branch tree only.
+#include "command_pipeline.hpp"
 #include "commands.hpp"
-#include "simplification_run.hpp"
-#include "topology_run.hpp"
-#include "transfer_function_json.hpp"
-#include "transfer_function_stage.hpp"
-#include "filter_input.hpp"
-#include "volume_input.hpp"
+#include "input_flags.hpp"
+#include "look_flags.hpp"
 
-#include "io/png_output.hpp"
+#include "io/legend_png.hpp"
+#include "pipeline/transfer_function_file.hpp"
 
 #include <cstdio>
 #include <memory>
@@ -20,15 +18,16 @@ namespace arbor::cli {
 
 namespace {
 
+using pipeline::Stage;
+
 struct TfArgs {
-    VolumeInput input;
-    FilterInput filter;
-    PluginChoice simplifiers{ARBOR_KIND_SIMPLIFIER, "simplifier"};
-    TransferFunctionStage stage;
-    std::string simplifier = "itri";
-    CutRequest cut;
+    InputFlags input;
+    FilterFlags filter;
+    SimplifierFlags simplifier;
+    CutFlags cut;
+    AppearanceFlags look;
     std::string output, legend;
-    int legend_size = 512;
+    uint32_t legend_size = 512;
     bool timings = false;
 };
 
@@ -41,51 +40,54 @@ void add_tf_command(CLI::App &app, Context &context)
     auto a = std::make_shared<TfArgs>();
     a->input.add_to(*sub, context);
     a->filter.add_to(*sub, context);
-    sub->add_option("--simplifier", a->simplifier, "Simplifier plugin (id or last part)")->default_val("itri");
-    add_cut_options(*sub, a->cut, "Keep branches whose relative importance exceeds T (default: --keep 12)");
+    a->simplifier.add_to(*sub, context);
+    a->cut.add_to(*sub, "Keep branches whose relative importance exceeds T (default: --keep 12)");
     sub->add_option("-o,--output", a->output, "Transfer functions (JSON, arbor-transfer-functions/1)")->required();
     sub->add_option("--legend", a->legend, "Write the depictor's legend (the relation wheel) as PNG");
     sub->add_option("--legend-size", a->legend_size, "Legend width and height in pixels")
         ->check(CLI::Range(64, 4096))
         ->default_val(512);
     sub->add_flag("--timings", a->timings, "Print per-stage seconds on stderr");
-    a->stage.add_to(*sub, context);
-    a->simplifiers.add_to(*sub, context, "Simplifier options");
+    a->look.add_to(*sub, context);
     context.add_command(sub, [a, &context]() {
-        if (!a->cut.keep && !a->cut.threshold)
-            a->cut.keep = 12;
-        a->stage.validate(!a->legend.empty());
-        PluginInstance &simplifier = a->simplifiers.resolve(a->simplifier);
-        LoadedVolume in = a->input.load();
-        a->filter.apply(in, context);
-        const topology::TopologyResult topo = run_contour_tree(in.volume, context);
-        const SimplifiedTree s = simplify_tree(topo.tree, in.volume, simplifier, a->cut, context);
-        const BranchTreeRecord tree(topo.tree, s.branches, s.cut, in.volume);
-        const double range[2] = {s.branches.global_min, s.branches.global_max};
-        const TransferFunctionResult r = a->stage.run(tree, in.volume, range, context);
+        const SweepAxes axes{a->simplifier.names(), a->cut.keeps(), a->look.flow_rates(), a->look.shapes(),
+                             a->look.hues()};
+        refuse_lists(axes, "tf");
+        CommandPipeline p(context, !a->input.no_cache());
+        const pipeline::PluginCatalog &catalog = p->catalog();
+        pipeline::Document d = pipeline::default_document();
+        d.cut.keep = 12;
+        a->input.apply(d.input, catalog);
+        a->filter.apply(d.filters, catalog);
+        const SweepPoint point = sweep_points(axes).front();
+        a->simplifier.apply(d.simplifier, point.simplifier, catalog);
+        a->cut.apply(d.cut, point.keep);
+        a->look.apply(d.appearance, point, catalog);
+        if (!a->legend.empty()) {
+            if (d.appearance.depictor.empty())
+                throw std::invalid_argument("--legend needs a depictor (--relation neighbour --select BRANCH)");
+            // The legend is the chosen depictor's own drawing.
+            d.appearance.legend = d.appearance.depictor;
+            d.appearance.legend_size = a->legend_size;
+        }
+        p->set_document(d);
+        const auto filtered = p.run<Stage::Filter>();
+        const auto tree = p.run<Stage::ContourTree>();
+        const auto tf = p.run<Stage::TransferFunctions>();
         // Drawn before anything is written, so a depictor without one fails cleanly.
-        const cv::Mat legend = a->legend.empty() ? cv::Mat() : a->stage.legend(*r.depictor, r.request, a->legend_size);
-
-        TransferFunctionFile f;
-        f.source = in.source;
-        f.simplifier_id = s.id;
-        f.cut = a->cut.describe();
-        f.generator = r.generator;
-        f.depictor = r.depictor;
-        f.selected_branch = r.request.selected_branch;
-        f.value_range[0] = range[0];
-        f.value_range[1] = range[1];
-        f.tree = &tree.record();
-        f.depiction = r.depictor ? &r.depiction->record() : nullptr;
-        f.functions = r.functions.get();
-        write_transfer_functions(a->output, f);
+        std::shared_ptr<const pipeline::LegendResult> legend;
         if (!a->legend.empty())
-            io::write_png(a->legend, legend);
-        std::printf("%s: %u branches kept by %s, transfer functions by %s -> %s\n", in.source.c_str(), tree.size(),
-                    s.id.c_str(), r.generator->id().c_str(), a->output.c_str());
+            legend = p.run<Stage::Legend>();
+        pipeline::write_transfer_functions(a->output, *tf, filtered->source);
+        if (legend)
+            io::write_legend_png(a->legend, legend->size, legend->rgba);
+        const pipeline::CutResult &cut = *tf->depiction->cut;
+        std::printf("%s: %zu branches kept by %s, transfer functions by %s -> %s\n", filtered->source.c_str(),
+                    cut.kept(), cut.decomposition->simplifier.id.c_str(), tf->generator.id.c_str(), a->output.c_str());
         if (a->timings)
-            std::fprintf(stderr, "  %-20s %8.3f s\n  %-20s %8.3f s\n  %-20s %8.6f s\n", "contour tree",
-                         topo.total_seconds, "simplification", s.seconds, "depiction + tf", r.seconds);
+            std::fprintf(stderr, "  %-20s %8.3f s\n  %-20s %8.3f s\n  %-20s %8.6f s\n", "contour tree", tree->seconds,
+                         "simplification", cut.decomposition->seconds + cut.seconds, "depiction + tf",
+                         tf->depiction->seconds + tf->seconds);
         return 0;
     });
 }

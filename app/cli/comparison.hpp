@@ -4,19 +4,42 @@
 // ground-truth structure (Dice).
 #pragma once
 
-#include "simplification_run.hpp"
+#include "pipeline/stage_results.hpp"
 
 #include "core/volume.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace arbor::cli {
 
+// One simplifier's decomposition and cut of the shared tree, as the
+// pipeline computed them (the views point into `cut`).
+struct SimplifiedTree {
+    explicit SimplifiedTree(std::shared_ptr<const pipeline::CutResult> result)
+        : cut_result(std::move(result)), id(cut_result->decomposition->simplifier.id),
+          name(cut_result->decomposition->simplifier_name), version(cut_result->decomposition->simplifier.version),
+          branches(cut_result->decomposition->branches), cut(cut_result->cut),
+          seconds(cut_result->decomposition->seconds + cut_result->seconds)
+    {
+    }
+    std::shared_ptr<const pipeline::CutResult> cut_result;
+    std::string id, name, version;
+    const topology::BranchDecomposition &branches;
+    const topology::SimplificationCut &cut;
+    double seconds;
+};
+
 struct ComparedSimplifier {
+    ComparedSimplifier(std::shared_ptr<const pipeline::CutResult> cut, std::shared_ptr<const pipeline::LabelsResult> l)
+        : run(std::move(cut)), labels_result(std::move(l)), labels(labels_result->labels)
+    {
+    }
     SimplifiedTree run;
-    std::vector<uint32_t> labels; // voxel -> kept label
+    std::shared_ptr<const pipeline::LabelsResult> labels_result;
+    const std::vector<uint32_t> &labels; // voxel -> kept label
 };
 
 // Kept sets compared structure by structure.  Different importances pick

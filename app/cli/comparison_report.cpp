@@ -44,22 +44,30 @@ const topology::Branch &kept_branch(const ComparedSimplifier &c, std::size_t lab
 
 void write_report_json(const std::filesystem::path &path, const ComparisonStudy &study)
 {
-    const topology::TopologyResult &topo = *study.topology;
+    const pipeline::ContourTreeResult &topo = *study.tree;
     io::write_json_file(path, io::JsonLayout::indented, [&](io::JsonWriter &j) {
         j.field("format", "arbor-comparison/1");
         io::write_volume_summary(j, study.source, study.volume->geometry());
-        io::write_contour_tree_summary(j, topo.tree, topo.total_seconds);
-        write_cut(j, study.request);
+        io::write_contour_tree_summary(j, topo.tree, topo.seconds);
+        {
+            const io::JsonWriter::Scope cut = j.object("cut");
+            if (study.request.keep)
+                j.field("keep", *study.request.keep);
+            else
+                j.field("threshold", study.request.threshold.value_or(0.0));
+        }
         {
             const io::JsonWriter::Scope simplifiers = j.array("simplifiers");
             for (const ComparedSimplifier &c : study.runs) {
                 const SimplifiedTree &s = c.run;
                 const io::JsonWriter::Scope o = j.object();
-                write_simplifier_fields(j, s);
+                j.field("id", s.id);
+                j.field("name", s.name);
+                j.field("version", s.version);
                 j.field("seconds", s.seconds);
                 j.field("branches", s.branches.branches.size());
                 j.field("kept_count", s.cut.kept.size());
-                write_kept_branches(j, "kept", topo.tree, *study.volume, s);
+                io::write_kept_branches(j, "kept", topo.tree, *study.volume, s.branches, s.cut);
             }
         }
         {
@@ -96,7 +104,7 @@ void write_report_json(const std::filesystem::path &path, const ComparisonStudy 
 
 void write_report_csv(const std::filesystem::path &path, const ComparisonStudy &study)
 {
-    const topology::ContourTree &tree = study.topology->tree;
+    const topology::ContourTree &tree = study.tree->tree;
     AtomicFile file(path);
     file.write("simplifier,label,branch,kind,importance,extremum_vertex,extremum_x_mm,extremum_y_mm,extremum_z_mm,"
                "extremum_value,saddle_value");
@@ -130,12 +138,12 @@ void write_report_csv(const std::filesystem::path &path, const ComparisonStudy &
 
 void write_report_markdown(const std::filesystem::path &path, const ComparisonStudy &study)
 {
-    const topology::TopologyResult &topo = *study.topology;
+    const pipeline::ContourTreeResult &topo = *study.tree;
     const Geometry &g = study.volume->geometry();
     std::ostringstream md;
     md << "# Simplifier comparison: " << study.source << "\n\n";
     md << "Volume " << g.dims[0] << " x " << g.dims[1] << " x " << g.dims[2] << ", contour tree of "
-       << topo.tree.node_count() << " nodes computed once in " << fixed(topo.total_seconds, 3)
+       << topo.tree.node_count() << " nodes computed once in " << fixed(topo.seconds, 3)
        << " s; every simplifier decomposes that tree with its own importance and is cut to "
        << study.request.describe() << ".\n\n";
     md << "| simplifier | version | branches | kept | seconds |\n|---|---|---:|---:|---:|\n";

@@ -6,7 +6,8 @@
 
 #include "comparison.hpp"
 
-#include "topology/topology_pipeline.hpp"
+#include "pipeline/document.hpp"
+#include "pipeline/stage_results.hpp"
 
 #include <filesystem>
 #include <string>
@@ -17,8 +18,8 @@ namespace arbor::cli {
 struct ComparisonStudy {
     std::string source;
     const Volume *volume = nullptr;
-    const topology::TopologyResult *topology = nullptr;
-    CutRequest request;
+    const pipeline::ContourTreeResult *tree = nullptr;
+    pipeline::CutChoice request;
     std::vector<ComparedSimplifier> runs;
     std::vector<Overlap> overlaps;
     std::string truth_source; // empty: no ground truth

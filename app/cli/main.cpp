@@ -8,6 +8,7 @@
 #include "interrupt_watch.hpp"
 
 #include "core/cancelled.hpp"
+#include "pipeline/plugin_catalog.hpp"
 #include "core/volume_header.hpp"
 
 #include <cstdio>
@@ -83,6 +84,11 @@ int main(int argc, char **argv)
     } catch (const Cancelled &) {
         log_message(ARBOR_LOG_ERROR, "", "cancelled");
         return 130;
+    } catch (const pipeline::SettingError &e) {
+        // The pipeline names the parameter; the user typed a flag.
+        const std::string flag = context.flag_names.flag_of(e.plugin_id, e.param_id);
+        log_message(ARBOR_LOG_ERROR, "", std::string(e.what()) + (flag.empty() ? "" : " (give " + flag + ")"));
+        return 1;
     } catch (const std::exception &e) {
         if (interrupt.interrupted()) {
             log_message(ARBOR_LOG_ERROR, "", "cancelled");

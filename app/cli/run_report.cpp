@@ -1,60 +1,50 @@
 #include "run_report.hpp"
 
 #include "core/atomic_file.hpp"
-#include "host/param_text.hpp"
-#include "io/json_writer.hpp"
 
-#include <algorithm>
-#include <array>
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdio>
-#include <span>
 #include <sstream>
 
 namespace arbor::cli {
 
 namespace {
 
-void write_plugin(io::JsonWriter &j, std::string_view role, const PluginInstance &p)
+using nlohmann::json;
+using pipeline::Stage;
+
+json plugin_json(const pipeline::PluginSetting &s)
 {
-    const io::JsonWriter::Scope plugin = j.object(role);
-    j.field("id", p.id());
-    j.field("name", p.descriptor().name);
-    j.field("version", p.descriptor().version);
-    const io::JsonWriter::Scope params = j.object("parameters");
-    for (const arbor_param_desc *d : p.param_descriptions())
-        j.field(d->id, format_param_value(*d, p.get_param(d->id)));
+    return {{"id", s.id}, {"version", s.version}, {"parameters", s.params}};
 }
 
-// How branch b looks: the opacity range of its lookup table and its colour
-// (straight sRGB) at the extremum end.
-struct BranchLook {
-    float opacity[2] = {1, 0};
-    std::array<float, 3> colour{};
-    char hex[8] = "";
-};
-
-BranchLook branch_look(const RunReport &r, uint32_t b)
+// Colour (straight sRGB) and opacity range of branch b's lookup table.
+json branch_json(const arbor_branch_tree &t, const TransferFunctions &tf, uint32_t b)
 {
-    const arbor_branch_tree &t = *r.tree;
-    const TransferFunctions &tf = *r.tf->functions;
     const float *lut = tf.lut(b);
-    BranchLook look;
+    float lo = 1, hi = 0;
     for (uint32_t i = 0; i < tf.lut_size(); ++i) {
-        look.opacity[0] = std::min(look.opacity[0], lut[4 * i + 3]);
-        look.opacity[1] = std::max(look.opacity[1], lut[4 * i + 3]);
+        lo = std::min(lo, lut[4 * i + 3]);
+        hi = std::max(hi, lut[4 * i + 3]);
     }
     const bool at_low = b != 0 && t.extremum_value[b] < t.saddle_value[b];
     const float *c = lut + 4 * (at_low ? 0 : tf.lut_size() - 1);
-    look.colour = {c[0], c[1], c[2]};
-    std::snprintf(look.hex, sizeof look.hex, "#%02x%02x%02x", static_cast<int>(std::lround(255 * c[0])),
+    char hex[8];
+    std::snprintf(hex, sizeof hex, "#%02x%02x%02x", static_cast<int>(std::lround(255 * c[0])),
                   static_cast<int>(std::lround(255 * c[1])), static_cast<int>(std::lround(255 * c[2])));
-    return look;
-}
-
-const char *branch_kind(const arbor_branch_tree &t, uint32_t b)
-{
-    return b == 0 ? "root" : (t.extremum_kind[b] == ARBOR_EXTREMUM_MINIMUM ? "minimum" : "maximum");
+    return {{"label", b},
+            {"parent", t.parent[b]},
+            {"depth", t.depth[b]},
+            {"kind", b == 0 ? "root" : (t.extremum_kind[b] == ARBOR_EXTREMUM_MINIMUM ? "minimum" : "maximum")},
+            {"extremum_position_mm",
+             {t.extremum_position[3 * b], t.extremum_position[3 * b + 1], t.extremum_position[3 * b + 2]}},
+            {"value_range", {tf.domain(b).first, tf.domain(b).second}},
+            {"importance", t.importance ? t.importance[b] : 0.0},
+            {"opacity_range", {lo, hi}},
+            {"colour", hex},
+            {"colour_srgb", {c[0], c[1], c[2]}}};
 }
 
 std::string fixed(double x, int digits)
@@ -64,134 +54,183 @@ std::string fixed(double x, int digits)
     return buf;
 }
 
-void write_report_json(const std::filesystem::path &path, const RunReport &r, const std::vector<BranchLook> &looks,
-                       double total_seconds)
+json stage_runs_json(const std::array<uint64_t, pipeline::kStageCount> &runs)
 {
-    const Geometry &g = r.volume->geometry();
-    const arbor_branch_tree &t = *r.tree;
-    io::write_json_file(path, io::JsonLayout::indented, [&](io::JsonWriter &j) {
-        j.field("format", "arbor-run-report/1");
-        {
-            const io::JsonWriter::Scope input = j.object("input");
-            j.field("source", r.source);
-            j.field("importer", r.importer);
-            j.field("dims", g.dims);
-            j.field("spacing_mm", g.spacing);
-            j.field("voxel_type", arbor_voxel_type_name(r.volume->type()));
-            j.field("value_range",
-                    std::array<double, 2>{r.simplified->branches.global_min, r.simplified->branches.global_max});
-        }
-        {
-            const io::JsonWriter::Scope plugins = j.object("plugins");
-            {
-                const io::JsonWriter::Scope simplifier = j.object("simplifier");
-                j.field("id", r.simplified->id);
-                j.field("version", r.simplified->version);
-            }
-            if (r.filter)
-                write_plugin(j, "filter", *r.filter);
-            if (r.tf->depictor)
-                write_plugin(j, "depictor", *r.tf->depictor);
-            write_plugin(j, "generator", *r.tf->generator);
-            write_plugin(j, "renderer", *r.renderer);
-        }
-        {
-            const io::JsonWriter::Scope simplification = j.object("simplification");
-            j.field("cut", r.cut.describe());
-            j.field("automatic", r.knee.has_value());
-            j.field("contour_tree_nodes", r.topology->tree.node_count());
-            j.field("branches_before", r.simplified->branches.branches.size());
-            j.field("branches_after", r.simplified->cut.kept.size());
-            if (r.knee)
-                j.field("knee_ranks_considered", r.knee->considered);
-        }
-        {
-            const io::JsonWriter::Scope camera = j.object("camera");
-            j.field("azimuth", r.orbit.azimuth);
-            j.field("elevation", r.orbit.elevation);
-            j.field("zoom", r.orbit.zoom);
-            j.field("perspective", r.orbit.perspective);
-            j.field("width", r.width);
-            j.field("height", r.height);
-        }
-        {
-            const io::JsonWriter::Scope seconds = j.object("seconds");
-            for (const auto &[name, stage_seconds] : r.stages)
-                j.field(name, stage_seconds);
-            j.field("total", total_seconds);
-        }
-        {
-            const io::JsonWriter::Scope branches = j.array("branches");
-            for (uint32_t b = 0; b < t.branch_count; ++b) {
-                const io::JsonWriter::Scope branch = j.object();
-                const TransferFunctions &tf = *r.tf->functions;
-                j.field("label", b);
-                j.field("parent", t.parent[b]);
-                j.field("depth", t.depth[b]);
-                j.field("kind", branch_kind(t, b));
-                j.field("extremum_position_mm", std::span<const double>(t.extremum_position + 3 * b, 3));
-                j.field("value_range", std::array<double, 2>{tf.domain(b).first, tf.domain(b).second});
-                j.field("importance", t.importance ? t.importance[b] : 0.0);
-                j.field("opacity_range", looks[b].opacity);
-                j.field("colour", looks[b].hex);
-                j.field("colour_srgb", looks[b].colour);
-            }
-        }
-        const io::JsonWriter::Scope output = j.object("output");
-        j.field("image", r.image);
-        j.field("legend", r.legend);
-        j.field("legend_selected_branch", r.legend_selected);
-        j.field("covered_fraction", r.coverage);
-    });
+    json j = json::object();
+    for (std::size_t s = 0; s < pipeline::kStageCount; ++s)
+        j[pipeline::stage_name(static_cast<Stage>(s))] = runs[s];
+    return j;
+}
+
+// What one rendered image is made of: everything below the contour tree.
+json run_json(const RunReport &report, const RenderedRun &run, std::vector<std::pair<std::string, double>> &seconds)
+{
+    const pipeline::CutResult &cut = *run.cut;
+    const pipeline::DecompositionResult &d = *cut.decomposition;
+    const pipeline::Document &doc = run.document;
+    json j;
+    if (!run.name.empty()) {
+        j["name"] = run.name;
+        j["caption"] = run.caption;
+    }
+    j["plugins"] = {{"simplifier", plugin_json(d.simplifier)},
+                    {"generator", plugin_json(run.tf->generator)},
+                    {"renderer", plugin_json(run.render->renderer)}};
+    j["plugins"]["simplifier"]["name"] = d.simplifier_name;
+    if (!report.filtered->filters.empty()) {
+        j["plugins"]["filters"] = json::array();
+        for (const pipeline::PluginSetting &f : report.filtered->filters)
+            j["plugins"]["filters"].push_back(plugin_json(f));
+        j["plugins"]["filter"] = j["plugins"]["filters"][0];
+    }
+    if (!run.tf->depiction->depictor.empty())
+        j["plugins"]["depictor"] = plugin_json(run.tf->depiction->depictor);
+    if (run.legend)
+        j["plugins"]["legend"] = plugin_json(run.legend->depictor);
+    j["simplification"] = {{"cut", cut.effective().describe()},
+                           {"requested", cut.requested.describe()},
+                           {"automatic", cut.knee.has_value()},
+                           {"contour_tree_nodes", report.tree->tree.node_count()},
+                           {"branches_before", d.branches.branches.size()},
+                           {"branches_after", cut.kept()}};
+    if (cut.knee)
+        j["simplification"]["knee_ranks_considered"] = cut.knee->considered;
+    const Orbit &o = doc.view.orbit;
+    j["camera"] = {{"azimuth", o.azimuth},        {"elevation", o.elevation},
+                   {"zoom", o.zoom},              {"perspective", o.perspective},
+                   {"width", doc.view.width},     {"height", doc.view.height}};
+    seconds = {{"import", report.import->seconds},
+               {"filter", report.filtered->seconds},
+               {"contour tree", report.tree->seconds},
+               {"simplification", d.seconds + cut.seconds},
+               {"transfer functions", run.tf->depiction->seconds + run.tf->seconds},
+               {"render", run.render->seconds},
+               {"legend", run.legend ? run.legend->seconds : 0.0},
+               {"write", run.write_seconds}};
+    json stages = json::object();
+    double total = 0;
+    for (const auto &[name, s] : seconds) {
+        stages[name] = s;
+        total += s;
+    }
+    stages["total"] = total;
+    j["seconds"] = stages;
+    j["branches"] = json::array();
+    const arbor_branch_tree &tree = cut.tree->record();
+    for (uint32_t b = 0; b < tree.branch_count; ++b)
+        j["branches"].push_back(branch_json(tree, *run.tf->functions, b));
+    j["output"] = {{"image", run.image.string()}, {"covered_fraction", run.coverage}};
+    if (run.legend) {
+        j["output"]["legend"] = run.legend_image.string();
+        j["output"]["legend_selected_branch"] = run.legend->selected;
+    }
+    return j;
+}
+
+json input_json(const RunReport &r)
+{
+    const Volume &v = *r.filtered->volume;
+    const Geometry &g = v.geometry();
+    const pipeline::DecompositionResult &d = *r.runs.front().cut->decomposition;
+    return {{"source", r.filtered->source},
+            {"importer", r.import->importer.empty() ? "" : r.import->importer.id + " " + r.import->importer.version},
+            {"dims", {g.dims[0], g.dims[1], g.dims[2]}},
+            {"spacing_mm", {g.spacing[0], g.spacing[1], g.spacing[2]}},
+            {"voxel_type", arbor_voxel_type_name(v.type())},
+            {"value_range", {d.branches.global_min, d.branches.global_max}}};
+}
+
+void markdown_run(std::ostringstream &md, const RunReport &r, const RenderedRun &run, const json &j,
+                  const std::vector<std::pair<std::string, double>> &seconds)
+{
+    const pipeline::CutResult &cut = *run.cut;
+    const pipeline::DecompositionResult &d = *cut.decomposition;
+    md << "Contour tree: " << r.tree->tree.node_count() << " nodes"
+       << (r.tree->from_cache ? " (from the cache)" : "") << ", " << d.branches.branches.size() << " branches; "
+       << d.simplifier.id << " kept " << cut.kept() << " ("
+       << (cut.knee ? "knee of the importance curve" : cut.requested.describe()) << ").\n\n"
+       << "Image " << run.document.view.width << " x " << run.document.view.height << " (" << run.image.string()
+       << "), " << fixed(100 * run.coverage, 1) << "% covered";
+    if (run.legend)
+        md << "; legend " << run.legend_image.string() << " (relation wheel of branch " << run.legend->selected << ")";
+    md << ".\n\n## Plugins\n\n| role | id | version |\n|---|---|---|\n";
+    for (const auto &[role, p] : j["plugins"].items())
+        if (role != "filters")
+            md << "| " << role << " | " << p["id"].get<std::string>() << " | " << p["version"].get<std::string>()
+               << " |\n";
+    md << "\nParameters are in the JSON report.\n\n## Seconds per stage\n\n| stage | seconds |\n|---|---:|\n";
+    double total = 0;
+    for (const auto &[name, s] : seconds) {
+        md << "| " << name << " | " << fixed(s, 3) << " |\n";
+        total += s;
+    }
+    md << "| total | " << fixed(total, 3) << " |\n\n## Branches\n\n"
+       << "| label | parent | depth | kind | value range | opacity | colour |\n|---:|---:|---:|---|---|---|---|\n";
+    for (const json &b : j["branches"])
+        md << "| " << b["label"] << " | " << b["parent"] << " | " << b["depth"] << " | "
+           << b["kind"].get<std::string>() << " | " << fixed(b["value_range"][0].get<double>(), 1) << " .. "
+           << fixed(b["value_range"][1].get<double>(), 1) << " | " << fixed(b["opacity_range"][0].get<double>(), 3)
+           << " .. " << fixed(b["opacity_range"][1].get<double>(), 3) << " | " << b["colour"].get<std::string>()
+           << " |\n";
+}
+
+void write_text(const std::filesystem::path &path, const std::string &text)
+{
+    AtomicFile file(path);
+    file.write(text);
+    file.commit();
 }
 
 } // namespace
 
 void write_run_report(const std::filesystem::path &path, const RunReport &r)
 {
-    const Geometry &g = r.volume->geometry();
-    const arbor_branch_tree &t = *r.tree;
-    std::vector<BranchLook> looks;
-    for (uint32_t b = 0; b < t.branch_count; ++b)
-        looks.push_back(branch_look(r, b));
-    double total = 0;
-    for (const auto &stage : r.stages)
-        total += stage.second;
-    write_report_json(path, r, looks, total);
-
+    const Geometry &g = r.filtered->volume->geometry();
+    const bool sweep = r.runs.size() > 1;
+    json j;
     std::ostringstream md;
-    md << "# Arbor run: " << r.source << "\n\n"
+    md << "# Arbor " << (sweep ? "sweep" : "run") << ": " << r.filtered->source << "\n\n"
        << "Volume " << g.dims[0] << " x " << g.dims[1] << " x " << g.dims[2] << " "
-       << arbor_voxel_type_name(r.volume->type()) << ", spacing " << fixed(g.spacing[0], 3) << " x "
+       << arbor_voxel_type_name(r.filtered->volume->type()) << ", spacing " << fixed(g.spacing[0], 3) << " x "
        << fixed(g.spacing[1], 3) << " x " << fixed(g.spacing[2], 3) << " mm"
-       << (r.importer.empty() ? "" : ", read by " + r.importer) << ".\n\n"
-       << "Contour tree: " << r.topology->tree.node_count() << " nodes, " << r.simplified->branches.branches.size()
-       << " branches; " << r.simplified->id << " kept " << r.simplified->cut.kept.size() << " ("
-       << (r.knee ? "knee of the importance curve" : r.cut.describe()) << ").\n\n"
-       << "Image " << r.width << " x " << r.height << " (" << r.image << "), " << fixed(100 * r.coverage, 1)
-       << "% covered; legend " << r.legend << " (relation wheel of branch " << r.legend_selected << ").\n\n"
-       << "## Plugins\n\n| role | id | version |\n|---|---|---|\n"
-       << "| simplifier | " << r.simplified->id << " | " << r.simplified->version << " |\n";
-    if (r.tf->depictor)
-        md << "| depictor | " << r.tf->depictor->id() << " | " << r.tf->depictor->descriptor().version << " |\n";
-    md << "| generator | " << r.tf->generator->id() << " | " << r.tf->generator->descriptor().version << " |\n"
-       << "| renderer | " << r.renderer->id() << " | " << r.renderer->descriptor().version << " |\n\n"
-       << "Parameters are in the JSON report.\n\n## Seconds per stage\n\n| stage | seconds |\n|---|---:|\n";
-    for (const auto &[name, seconds] : r.stages)
-        md << "| " << name << " | " << fixed(seconds, 3) << " |\n";
-    md << "| total | " << fixed(total, 3) << " |\n\n## Branches\n\n"
-       << "| label | parent | depth | kind | value range | opacity | colour |\n|---:|---:|---:|---|---|---|---|\n";
-    for (uint32_t b = 0; b < t.branch_count; ++b) {
-        const std::pair<double, double> range = r.tf->functions->domain(b);
-        md << "| " << b << " | " << t.parent[b] << " | " << t.depth[b] << " | " << branch_kind(t, b) << " | "
-           << fixed(range.first, 1) << " .. " << fixed(range.second, 1) << " | " << fixed(looks[b].opacity[0], 3)
-           << " .. " << fixed(looks[b].opacity[1], 3) << " | " << looks[b].hex << " |\n";
+       << (r.import->importer.empty() ? "" : ", read by " + r.import->importer.id + " " + r.import->importer.version)
+       << ".\n\n";
+    std::vector<std::pair<std::string, double>> seconds;
+    if (!sweep) {
+        j = run_json(r, r.runs.front(), seconds);
+        j["format"] = "arbor-run-report/1";
+        markdown_run(md, r, r.runs.front(), j, seconds);
+    } else {
+        j["format"] = "arbor-sweep-report/1";
+        j["runs"] = json::array();
+        md << "Contact sheet: " << r.contact_sheet.string() << "\n\n| run | image | kept | seconds (render) |\n"
+           << "|---|---|---:|---:|\n";
+        for (const RenderedRun &run : r.runs) {
+            j["runs"].push_back(run_json(r, run, seconds));
+            md << "| " << run.caption << " | " << run.image.string() << " | " << run.cut->kept() << " | "
+               << fixed(run.render->seconds, 3) << " |\n";
+        }
+        j["contact_sheet"] = r.contact_sheet.string();
+        md << "\n## First run: " << r.runs.front().caption << "\n\n";
+        markdown_run(md, r, r.runs.front(), j["runs"][0], seconds);
     }
+    j["input"] = input_json(r);
+    j["contour_tree"] = {{"nodes", r.tree->tree.node_count()},
+                         {"arcs", r.tree->tree.arc_count()},
+                         {"seconds", r.tree->seconds},
+                         {"from_cache", r.tree->from_cache}};
+    j["stage_runs"] = stage_runs_json(r.stage_runs);
+    if (!r.session.empty())
+        j["session"] = r.session.string();
+    if (!r.labels.empty())
+        j["labels"] = r.labels.string();
+    md << "\n## Stage runs\n\n| stage | runs |\n|---|---:|\n";
+    for (const auto &[stage, n] : j["stage_runs"].items())
+        md << "| " << stage << " | " << n << " |\n";
+    write_text(path, j.dump(2) + "\n");
     std::filesystem::path md_path = path;
     md_path.replace_extension(".md");
-    AtomicFile mdfile(md_path);
-    mdfile.write(md.str());
-    mdfile.commit();
+    write_text(md_path, md.str());
 }
 
 } // namespace arbor::cli

@@ -1,46 +1,43 @@
-// run_report.hpp - the report of `arbor run`: inputs, every plugin with its
-// version and parameters, per-stage seconds, branch counts before and after
-// simplification, and per branch its opacity and colour, as JSON (for
-// machines) and Markdown (for people), enough to reproduce the image.
+// run_report.hpp - the report of `arbor run`: the input, every plugin with
+// its version and parameters, the cut, per-stage seconds, how often each
+// stage ran, and per branch its opacity and colour, as JSON (for machines)
+// and Markdown (for people); with the session file, enough to reproduce the
+// image.  One run: "arbor-run-report/1".  A sweep: "arbor-sweep-report/1",
+// the same per run under "runs", plus the contact sheet.
 #pragma once
 
-#include "simplification_run.hpp"
-#include "transfer_function_stage.hpp"
-
-#include "host/rendering.hpp"
-#include "topology/importance_knee.hpp"
-#include "topology/topology_pipeline.hpp"
+#include "pipeline/pipeline.hpp"
 
 #include <filesystem>
-#include <optional>
+#include <memory>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace arbor::cli {
 
-struct RunReport {
-    std::vector<std::pair<std::string, double>> stages; // name, seconds
-    void stage(const std::string &name, double seconds) { stages.emplace_back(name, seconds); }
+// One rendered image and what made it.
+struct RenderedRun {
+    std::string name, caption; // of the sweep point ("" for a single run)
+    pipeline::Document document; // resolved, as rendered
+    std::shared_ptr<const pipeline::CutResult> cut;
+    std::shared_ptr<const pipeline::TransferFunctionsResult> tf;
+    std::shared_ptr<const pipeline::RenderResult> render;
+    std::shared_ptr<const pipeline::LegendResult> legend;
+    std::filesystem::path image, legend_image;
+    double coverage = 0.0; // fraction of the image covered
+    double write_seconds = 0.0;
+};
 
-    std::string source, importer;
-    const PluginInstance *filter = nullptr;
-    const Volume *volume = nullptr;
-    const topology::TopologyResult *topology = nullptr;
-    const SimplifiedTree *simplified = nullptr;
-    CutRequest cut;
-    std::optional<topology::KneeChoice> knee; // set when the count came from the knee
-    const arbor_branch_tree *tree = nullptr;
-    const TransferFunctionResult *tf = nullptr;
-    const PluginInstance *renderer = nullptr;
-    Orbit orbit;
-    uint32_t width = 0, height = 0;
-    double coverage = 0.0;
-    std::string image, legend;
-    uint32_t legend_selected = 0;
+struct RunReport {
+    std::shared_ptr<const pipeline::ImportResult> import;
+    std::shared_ptr<const pipeline::FilterResult> filtered;
+    std::shared_ptr<const pipeline::ContourTreeResult> tree;
+    std::vector<RenderedRun> runs;
+    std::array<uint64_t, pipeline::kStageCount> stage_runs{};
+    std::filesystem::path contact_sheet, session, labels; // empty when not written
 };
 
 // Writes `path` (JSON) and the same name with .md.
-void write_run_report(const std::filesystem::path &path, const RunReport &r);
+void write_run_report(const std::filesystem::path &path, const RunReport &report);
 
 } // namespace arbor::cli

@@ -1,5 +1,7 @@
 #include "topology_json.hpp"
 
+#include <cmath>
+
 namespace arbor::io {
 
 std::array<int64_t, 3> voxel_ijk(const Geometry &g, uint32_t v)
@@ -76,6 +78,33 @@ void write_volume_summary(JsonWriter &j, const std::string &source, const Geomet
     j.field("source", source);
     j.field("dims", g.dims);
     j.field("spacing_mm", g.spacing);
+}
+
+std::vector<uint32_t> kept_depths(const topology::SimplificationCut &cut)
+{
+    std::vector<uint32_t> depth(cut.kept.size(), 0);
+    for (std::size_t k = 1; k < cut.kept.size(); ++k)
+        depth[k] = depth[static_cast<std::size_t>(cut.kept_parent[k])] + 1; // parents come first
+    return depth;
+}
+
+void write_kept_branches(JsonWriter &j, std::string_view key, const topology::ContourTree &tree, const Volume &volume,
+                         const topology::BranchDecomposition &d, const topology::SimplificationCut &cut)
+{
+    const std::vector<uint32_t> depth = kept_depths(cut);
+    const JsonWriter::Scope kept = j.array(key);
+    for (std::size_t k = 0; k < cut.kept.size(); ++k) {
+        const uint32_t b = cut.kept[k];
+        const topology::Branch &br = d.branches[b];
+        const JsonWriter::Scope o = j.object();
+        j.field("label", k);
+        j.field("branch", b);
+        j.field("parent_label", cut.kept_parent[k]);
+        j.field("kind", branch_kind_name(br.kind));
+        j.field("depth", depth[k]);
+        j.field("importance", std::isinf(br.importance) ? 1.0 : br.importance);
+        write_branch_ends_and_measures(j, tree, volume, d, b);
+    }
 }
 
 } // namespace arbor::io

@@ -9,12 +9,14 @@
 
 #include "core/volume.hpp"
 #include "topology/branch_decomposition.hpp"
+#include "topology/simplification.hpp"
 
 #include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace arbor::io {
 
@@ -40,6 +42,15 @@ const char *branch_kind_name(topology::BranchKind k);
 // "contour_tree": {"nodes", "arcs", "seconds"}, plus "branches" when given.
 void write_contour_tree_summary(JsonWriter &j, const topology::ContourTree &tree, double seconds,
                                 std::optional<std::size_t> branches = {});
+
+// Depth of every kept branch in the simplified hierarchy (root 0).
+std::vector<uint32_t> kept_depths(const topology::SimplificationCut &cut);
+
+// key: an array with one object per kept branch: label, branch, parent
+// label, kind, depth, importance, extremum and saddle points, measures
+// absolute and relative.
+void write_kept_branches(JsonWriter &j, std::string_view key, const topology::ContourTree &tree, const Volume &volume,
+                         const topology::BranchDecomposition &d, const topology::SimplificationCut &cut);
 
 // "volume": {"source", "dims", "spacing_mm"}.
 void write_volume_summary(JsonWriter &j, const std::string &source, const Geometry &g);

@@ -1,7 +1,9 @@
 #include "document.hpp"
 #include "stage_results.hpp"
 
+#include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace arbor::pipeline {
 
@@ -26,6 +28,27 @@ std::string CutChoice::describe() const
     else
         s << "knee";
     return s.str();
+}
+
+CutChoice CutChoice::parse(const std::string &text)
+{
+    CutChoice c;
+    if (text == "knee")
+        return c;
+    std::istringstream in(text);
+    std::string word;
+    double x = 0;
+    if (in >> word >> x && in.eof()) {
+        if (word == "keep" && x >= 1 && x == std::floor(x)) {
+            c.keep = static_cast<std::size_t>(x);
+            return c;
+        }
+        if (word == "threshold" && x >= 0 && x <= 1) {
+            c.threshold = x;
+            return c;
+        }
+    }
+    throw std::invalid_argument("'" + text + "' is not a cut (\"keep N\", \"threshold T\" or \"knee\")");
 }
 
 CutChoice CutResult::effective() const

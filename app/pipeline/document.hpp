@@ -65,6 +65,8 @@ struct CutChoice {
 
     bool automatic() const { return !keep && !threshold; }
     std::string describe() const; // "keep 12", "threshold 0.01", "knee"
+    // The inverse of describe(); throws std::invalid_argument.
+    static CutChoice parse(const std::string &text);
     bool operator==(const CutChoice &) const = default;
 };
 

@@ -1,12 +1,13 @@
 #include "stage_compute.hpp"
+#include "transfer_function_file.hpp"
 #include "tree_cache.hpp"
 
 #include "core/cancelled.hpp"
-#include "core/phantom.hpp"
 #include "core/stopwatch.hpp"
 #include "host/filter_run.hpp"
 #include "host/simplifier_importance.hpp"
 #include "host/volume_import.hpp"
+#include "io/phantom.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -33,12 +34,12 @@ std::shared_ptr<const void> import(StageContext &c)
     Stopwatch watch;
     auto r = std::make_shared<ImportResult>();
     if (in.phantom) {
-        PhantomOptions o;
+        io::PhantomOptions o;
         o.size = in.phantom->size;
         o.noise_sigma = in.phantom->noise;
         o.blobs = in.phantom->blobs;
         o.seed = in.phantom->seed;
-        r->volume = std::make_shared<const Volume>(make_phantom(builtin_phantom(in.phantom->kind), o));
+        r->volume = std::make_shared<const Volume>(io::make_phantom(io::builtin_phantom(in.phantom->kind), o));
         r->source = "phantom:" + in.phantom->kind;
     } else {
         if (in.path.empty())
@@ -231,6 +232,24 @@ std::shared_ptr<const void> transfer_functions(StageContext &c)
     auto r = std::make_shared<TransferFunctionsResult>();
     r->depiction = depicted;
     r->value_range = {cut.decomposition->branches.global_min, cut.decomposition->branches.global_max};
+    if (!a.transfer_functions_file.empty()) {
+        // Functions made (and perhaps edited) earlier, for these very branches.
+        StoredTransferFunctions stored = read_transfer_functions(a.transfer_functions_file);
+        const arbor_branch_tree &tree = cut.tree->record();
+        bool same = stored.extremum_vertex.size() == tree.branch_count;
+        for (uint32_t k = 0; same && k < tree.branch_count; ++k)
+            same = stored.extremum_vertex[k] == tree.extremum_vertex[k];
+        if (!same)
+            throw std::invalid_argument(
+                a.transfer_functions_file.string() + ": its " + std::to_string(stored.extremum_vertex.size()) +
+                " branches (made from " + stored.source + ") are not the branches " + cut.decomposition->simplifier.id +
+                " keeps in " + c.input<Stage::Filter>()->source + " with " + cut.effective().describe() +
+                "; regenerate them with `arbor tf`");
+        r->file = a.transfer_functions_file;
+        r->functions = std::move(stored.functions);
+        r->seconds = watch.lap();
+        return r;
+    }
     PluginSlot::Lease generator = c.plugins.lease(a.generator, &c.job);
     r->generator = a.generator;
     const arbor_volume view = volume.view();

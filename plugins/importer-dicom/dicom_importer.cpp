@@ -124,6 +124,16 @@ public:
                 report_skipped();
             const dicom::Series &series = dicom::select_series(*scan_, params().text("series"));
             plan_.emplace(series, policy);
+            // Read back for a session, the parameter names the series itself
+            // (its UID), not its row in this folder's listing.
+            if (!series.uid.empty()) {
+                arbor_param_value uid{};
+                uid.struct_size = sizeof uid;
+                uid.type = ARBOR_PARAM_STRING;
+                uid.components = 1;
+                uid.text = series.uid.c_str();
+                params().set("series", uid);
+            }
             if (!folder)
                 report_siblings(path, series);
         } catch (const sdk::Error &) {

@@ -6,7 +6,7 @@
 #include "pipeline/tree_cache.hpp"
 #include "pipeline/tree_cache_entry.hpp"
 
-#include "core/phantom.hpp"
+#include "io/phantom.hpp"
 #include "core/stopwatch.hpp"
 #include "plugin_fixture.hpp"
 #include "test_paths.hpp"
@@ -33,11 +33,11 @@ using topology::ContourTree;
 
 Volume noisy_phantom(int64_t size, uint64_t seed)
 {
-    PhantomOptions options;
+    io::PhantomOptions options;
     options.size = size;
     options.noise_sigma = 25.0;
     options.seed = seed;
-    return make_phantom(builtin_phantom("head"), options);
+    return io::make_phantom(io::builtin_phantom("head"), options);
 }
 
 Volume copy_of(const Volume &v)

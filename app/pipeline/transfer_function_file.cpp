@@ -1,6 +1,5 @@
-#include "transfer_function_json.hpp"
+#include "transfer_function_file.hpp"
 
-#include "host/param_text.hpp"
 #include "io/json_writer.hpp"
 
 #include <nlohmann/json.hpp>
@@ -11,7 +10,7 @@
 #include <fstream>
 #include <string_view>
 
-namespace arbor::cli {
+namespace arbor::pipeline {
 
 namespace {
 
@@ -28,14 +27,14 @@ const char *role_name(arbor_branch_role r)
     }
 }
 
-void write_plugin(io::JsonWriter &j, std::string_view key, const PluginInstance &p)
+void write_plugin(io::JsonWriter &j, std::string_view key, const PluginSetting &p)
 {
     const io::JsonWriter::Scope plugin = j.object(key);
-    j.field("id", p.id());
-    j.field("version", p.descriptor().version);
+    j.field("id", p.id);
+    j.field("version", p.version);
     const io::JsonWriter::Scope parameters = j.object("parameters");
-    for (const arbor_param_desc *d : p.param_descriptions())
-        j.field(d->id, format_param_value(*d, p.get_param(d->id)));
+    for (const auto &[id, value] : p.params)
+        j.field(id, value);
 }
 
 // A colour with six decimals (as a float: what renderers read back).
@@ -48,27 +47,37 @@ void write_rgba(io::JsonWriter &j, const float *c)
 
 } // namespace
 
-void write_transfer_functions(const std::string &path, const TransferFunctionFile &f)
+void write_transfer_functions(const std::filesystem::path &path, const TransferFunctionsResult &result,
+                              const std::string &source)
 {
-    const TransferFunctions &tf = *f.functions;
-    const arbor_branch_tree &tree = *f.tree;
+    const TransferFunctions &tf = *result.functions;
+    const DepictionResult &depicted = *result.depiction;
+    const CutResult &cut = *depicted.cut;
+    const arbor_branch_tree &tree = cut.tree->record();
+    const arbor_depiction *depiction = depicted.depictor.empty() ? nullptr : &depicted.depiction->record();
     io::write_json_file(path, io::JsonLayout::indented, [&](io::JsonWriter &j) {
         j.field("format", "arbor-transfer-functions/1");
-        j.field("source", f.source);
+        j.field("source", source);
         {
             const io::JsonWriter::Scope simplifier = j.object("simplifier");
-            j.field("id", f.simplifier_id);
-            j.field("cut", f.cut);
+            j.field("id", cut.decomposition->simplifier.id);
+            j.field("cut", cut.effective().describe());
         }
-        write_plugin(j, "generator", *f.generator);
-        if (f.depictor) {
-            write_plugin(j, "depictor", *f.depictor);
-            j.field("selected_branch", f.selected_branch);
+        if (result.generator.empty()) {
+            j.key("generator");
+            j.null();
+            j.field("edited_from", result.file.string());
+        } else {
+            write_plugin(j, "generator", result.generator);
+        }
+        if (depiction) {
+            write_plugin(j, "depictor", depicted.depictor);
+            j.field("selected_branch", depicted.request.selected_branch);
         } else {
             j.key("depictor");
             j.null();
         }
-        j.field("value_range", f.value_range);
+        j.field("value_range", result.value_range);
         j.field("lut_size", tf.lut_size());
         j.field("opacity_unit_distance_mm", tf.record().opacity_unit_distance);
         const io::JsonWriter::Scope branches = j.array("branches");
@@ -79,8 +88,8 @@ void write_transfer_functions(const std::string &path, const TransferFunctionFil
             j.field("depth", tree.depth[b]);
             j.field("kind", b == 0 ? "root" : (tree.extremum_kind[b] == ARBOR_EXTREMUM_MINIMUM ? "minimum" : "maximum"));
             j.field("extremum_vertex", tree.extremum_vertex[b]);
-            if (f.depiction)
-                j.field("role", role_name(f.depiction->role[b]));
+            if (depiction)
+                j.field("role", role_name(depiction->role[b]));
             j.field("domain", std::array<double, 2>{tf.domain(b).first, tf.domain(b).second});
             const float *lut = tf.lut(b);
             float lo = 1.0f, hi = 0.0f;
@@ -110,12 +119,12 @@ void write_transfer_functions(const std::string &path, const TransferFunctionFil
     });
 }
 
-StoredTransferFunctions read_transfer_functions(const std::string &path)
+StoredTransferFunctions read_transfer_functions(const std::filesystem::path &path)
 {
     std::ifstream in(path);
     if (!in)
-        throw std::invalid_argument(path + ": cannot open the transfer-function file");
-    const auto bad = [&](const std::string &what) { return std::invalid_argument(path + ": " + what); };
+        throw std::invalid_argument(path.string() + ": cannot open the transfer-function file");
+    const auto bad = [&](const std::string &what) { return std::invalid_argument(path.string() + ": " + what); };
     nlohmann::json j;
     try {
         j = nlohmann::json::parse(in);
@@ -134,7 +143,7 @@ StoredTransferFunctions read_transfer_functions(const std::string &path)
         const double unit = j.at("opacity_unit_distance_mm").get<double>();
         if (branches.empty() || lut < 2 || !(unit > 0))
             throw bad("no branches, a lookup table shorter than 2 or a non-positive opacity unit distance");
-        out.functions = std::make_unique<TransferFunctions>(static_cast<uint32_t>(branches.size()), lut, unit);
+        out.functions = std::make_shared<TransferFunctions>(static_cast<uint32_t>(branches.size()), lut, unit);
         std::vector<uint32_t> offsets{0};
         std::vector<arbor_tf_point> points;
         std::vector<float> rgba(std::size_t{lut} * 4);
@@ -172,4 +181,4 @@ StoredTransferFunctions read_transfer_functions(const std::string &path)
     }
 }
 
-} // namespace arbor::cli
+} // namespace arbor::pipeline

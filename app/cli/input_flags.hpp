@@ -1,0 +1,66 @@
+// input_flags.hpp - the flags that choose what a command works on: a file or
+// folder read by an importer (chosen by probing, by --importer, or by the
+// importer whose flags were given), or the built-in phantom; the filter
+// chain applied before anything else; --no-cache.  Only the flags given
+// change the document, so they override a session's choices.
+#pragma once
+
+#include "cli_context.hpp"
+#include "plugin_flags.hpp"
+
+#include "pipeline/document.hpp"
+#include "pipeline/plugin_catalog.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace arbor::cli {
+
+class InputFlags {
+public:
+    // Adds the positional <volume>, --phantom*, --importer, --series, the
+    // importer flags and --no-cache.
+    void add_to(CLI::App &command, Context &context);
+    bool given() const;
+    // Throws std::invalid_argument naming the flag.
+    void apply(pipeline::InputChoice &input, const pipeline::PluginCatalog &catalog) const;
+    bool no_cache() const { return no_cache_; }
+
+private:
+    std::string path_, phantom_, importer_, series_;
+    int64_t phantom_size_ = 128;
+    double phantom_noise_ = 0.0;
+    int phantom_blobs_ = 0;
+    uint64_t phantom_seed_ = 1;
+    CLI::Option *path_option_ = nullptr, *phantom_option_ = nullptr, *size_option_ = nullptr,
+                *noise_option_ = nullptr, *blobs_option_ = nullptr, *seed_option_ = nullptr,
+                *importer_option_ = nullptr, *series_option_ = nullptr;
+    bool no_cache_ = false;
+    PluginFlags importer_flags_;
+    const PluginRegistry *registry_ = nullptr;
+};
+
+// --filter NAME[:key=value,...] (repeatable: a chain, applied in order), or
+// --filter none; each filter's parameters also as flags (--gaussian.sigma).
+class FilterFlags {
+public:
+    void add_to(CLI::App &command, Context &context);
+    bool given() const { return !specs_.empty(); }
+    // With --filter: the chain given.  Without: the filter flags apply to the
+    // filters of the chain there is (a session's).
+    void apply(std::vector<pipeline::PluginSetting> &chain, const pipeline::PluginCatalog &catalog) const;
+
+private:
+    std::vector<std::string> specs_;
+    PluginFlags flags_;
+};
+
+// "gaussian:sigma=1.5,radius=2" -> the setting (id as given); throws
+// std::invalid_argument for a pair that is not key=value.
+pipeline::PluginSetting parse_plugin_spec(const std::string &spec, const std::string &flag);
+
+// "a,b , c" -> {"a", "b", "c"}.
+std::vector<std::string> split_list(const std::string &list);
+
+} // namespace arbor::cli

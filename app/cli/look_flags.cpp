@@ -1,0 +1,141 @@
+#include "look_flags.hpp"
+
+#include "input_flags.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace arbor::cli {
+
+std::vector<std::string> SimplifierFlags::split(const std::string &list)
+{
+    return split_list(list);
+}
+
+void SimplifierFlags::add_to(CLI::App &command, Context &context, bool choice)
+{
+    if (choice)
+        command.add_option("--simplifier", name_,
+                       "Simplifier plugin: an id or its last part (itri, persistence, volume, hypervolume, "
+                       "n-measure); default itri");
+    flags_.add(command, context.registry, ARBOR_KIND_SIMPLIFIER, "Simplifier options");
+    context.flag_names.add(flags_);
+}
+
+void SimplifierFlags::apply(pipeline::PluginSetting &simplifier, const std::optional<std::string> &name,
+                            const pipeline::PluginCatalog &catalog) const
+{
+    if (name)
+        simplifier = {catalog.find(ARBOR_KIND_SIMPLIFIER, *name), "", {}};
+    else if (!simplifier.id.empty())
+        simplifier.id = catalog.find(ARBOR_KIND_SIMPLIFIER, simplifier.id);
+    flags_.apply(simplifier, several_ || names().size() > 1);
+}
+
+void CutFlags::add_to(CLI::App &command, const std::string &threshold_help)
+{
+    auto *keep = command.add_option("--keep", keep_, "Keep the N most important branches (root included)");
+    auto *threshold = command.add_option("--threshold", threshold_, threshold_help)->check(CLI::Range(0.0, 1.0));
+    keep->excludes(threshold);
+}
+
+std::vector<std::string> CutFlags::keeps() const
+{
+    std::vector<std::string> out = split_list(keep_);
+    for (const std::string &k : out) {
+        char *end = nullptr;
+        const double n = std::strtod(k.c_str(), &end);
+        if (*end || !(n >= 1) || n != std::floor(n) || n > 1e9)
+            throw std::invalid_argument("--keep " + k + ": a number of branches, 1 or more");
+    }
+    return out;
+}
+
+void CutFlags::apply(pipeline::CutChoice &cut, const std::optional<std::string> &keep) const
+{
+    if (keep) {
+        cut = {};
+        cut.keep = std::stoull(*keep);
+    } else if (threshold_) {
+        cut = {};
+        cut.threshold = *threshold_;
+    }
+}
+
+void AppearanceFlags::add_to(CLI::App &command, Context &context)
+{
+    generator_option_ =
+        command.add_option("--generator", generator_, "Transfer-function generator (residue-flow, histogram-ramp)")
+            ->group("Transfer functions");
+    command.add_option("--flow-rate", flow_rate_, "Flow rate Q (the generator's parameter flow-rate)")
+        ->group("Transfer functions");
+    command.add_option("--shape", shape_, "Opacity shape: ramp, inverse-ramp, hat, box, peak")
+        ->group("Transfer functions");
+    command.add_option("--hues", hues_, "Hue template: full, or i, V, L, I, T, Y, X with :rotation (X:30)")
+        ->group("Transfer functions");
+    command.add_option("--select", select_, "Selected branch (a label of the simplified tree)")
+        ->check(CLI::NonNegativeNumber)
+        ->group("Transfer functions");
+    relation_option_ = command.add_option("--relation", relation_,
+                                          "Relationship to depict: inclusion (default), neighbour, none, or a "
+                                          "depictor plugin's id")
+                           ->group("Transfer functions");
+    lut_option_ = command.add_option("--lut-size", lut_size_, "Entries of each baked lookup table (default 256)")
+                      ->check(CLI::Range(2, 65536))
+                      ->group("Transfer functions");
+    depictor_flags_.add(command, context.registry, ARBOR_KIND_DEPICTOR, "Depictor options");
+    generator_flags_.add(command, context.registry, ARBOR_KIND_TF_GENERATOR, "Generator options");
+    context.flag_names.add(depictor_flags_);
+    context.flag_names.add(generator_flags_);
+}
+
+std::vector<std::string> AppearanceFlags::flow_rates() const
+{
+    return split_list(flow_rate_);
+}
+
+std::vector<std::string> AppearanceFlags::shapes() const
+{
+    return split_list(shape_);
+}
+
+std::vector<std::string> AppearanceFlags::hues() const
+{
+    return split_list(hues_);
+}
+
+void AppearanceFlags::apply(pipeline::Appearance &look, const SweepPoint &point,
+                            const pipeline::PluginCatalog &catalog) const
+{
+    if (relation_option_->count()) {
+        look.depictor = relation_ == "none" ? pipeline::PluginSetting{}
+                                            : pipeline::PluginSetting{catalog.find(ARBOR_KIND_DEPICTOR, relation_), "", {}};
+    } else if (!look.depictor.id.empty()) {
+        look.depictor.id = catalog.find(ARBOR_KIND_DEPICTOR, look.depictor.id);
+    }
+    if (!look.depictor.empty())
+        depictor_flags_.apply(look.depictor);
+    if (select_)
+        look.selected = *select_;
+    if (look.depictor.empty() && look.selected && relation_option_->count() && relation_ == "none")
+        throw std::invalid_argument("--select needs a relationship to depict (--relation inclusion or neighbour)");
+    if (!look.depictor.empty() && pipeline::short_name(look.depictor.id) == "neighbour" && !look.selected)
+        throw std::invalid_argument("--relation neighbour needs --select BRANCH");
+
+    if (generator_option_->count())
+        look.generator = {catalog.find(ARBOR_KIND_TF_GENERATOR, generator_), "", {}};
+    else if (!look.generator.id.empty())
+        look.generator.id = catalog.find(ARBOR_KIND_TF_GENERATOR, look.generator.id);
+    generator_flags_.apply(look.generator);
+    // --flow-rate, --shape and --hues are the generator's parameters of those names.
+    if (point.flow_rate)
+        look.generator.params["flow-rate"] = *point.flow_rate;
+    if (point.shape)
+        look.generator.params["shape"] = *point.shape;
+    if (point.hues)
+        look.generator.params["hues"] = *point.hues;
+    if (lut_option_->count())
+        look.lut_size = lut_size_;
+}
+
+} // namespace arbor::cli

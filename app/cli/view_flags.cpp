@@ -1,0 +1,61 @@
+#include "view_flags.hpp"
+
+namespace arbor::cli {
+
+void ViewFlags::add_to(CLI::App &command, Context &context)
+{
+    renderer_option_ = command.add_option("--renderer", renderer_, "Renderer plugin (id or last part; default cpu-raycast)")
+                           ->group("Rendering");
+    width_option_ = command.add_option("--width", width_, "Image width in pixels (default 512)")
+                        ->check(CLI::Range(16, 8192))->group("Rendering");
+    height_option_ = command.add_option("--height", height_, "Image height in pixels (default 512)")
+                         ->check(CLI::Range(16, 8192))->group("Rendering");
+    azimuth_option_ =
+        command.add_option("--azimuth", azimuth_, "Camera azimuth in degrees (0: from anterior, 90: from the left)")
+            ->group("Rendering");
+    elevation_option_ = command.add_option("--elevation", elevation_, "Camera elevation in degrees (90: from superior)")
+                            ->check(CLI::Range(-90.0, 90.0))->group("Rendering");
+    zoom_option_ = command.add_option("--zoom", zoom_, "Zoom (1 fits the volume)")
+                       ->check(CLI::Range(0.05, 50.0))->group("Rendering");
+    auto *ortho = command.add_flag("--orthographic", orthographic_, "Orthographic instead of perspective projection")
+                      ->group("Rendering");
+    auto *persp = command.add_flag("--perspective", perspective_, "Perspective projection (the default)")
+                      ->group("Rendering");
+    ortho->excludes(persp);
+    background_option_ =
+        command.add_option("--background", background_, "Background colour r,g,b[,a] in [0, 1] (default black)")
+            ->delimiter(',')
+            ->expected(3, 4)
+            ->check(CLI::Range(0.0, 1.0))
+            ->group("Rendering");
+    flags_.add(command, context.registry, ARBOR_KIND_RENDERER, "Renderer options");
+    context.flag_names.add(flags_);
+}
+
+void ViewFlags::apply(pipeline::ViewChoice &view, const pipeline::PluginCatalog &catalog) const
+{
+    if (renderer_option_->count())
+        view.renderer = {catalog.find(ARBOR_KIND_RENDERER, renderer_), "", {}};
+    else if (!view.renderer.id.empty())
+        view.renderer.id = catalog.find(ARBOR_KIND_RENDERER, view.renderer.id);
+    flags_.apply(view.renderer);
+    if (width_option_->count())
+        view.width = width_;
+    if (height_option_->count())
+        view.height = height_;
+    if (azimuth_option_->count())
+        view.orbit.azimuth = azimuth_;
+    if (elevation_option_->count())
+        view.orbit.elevation = elevation_;
+    if (zoom_option_->count())
+        view.orbit.zoom = zoom_;
+    if (orthographic_)
+        view.orbit.perspective = false;
+    if (perspective_)
+        view.orbit.perspective = true;
+    if (background_option_->count())
+        for (std::size_t c = 0; c < 4; ++c)
+            view.background[c] = c < background_.size() ? background_[c] : 1.0;
+}
+
+} // namespace arbor::cli

@@ -1,0 +1,36 @@
+// transfer_function_file.hpp - our versioned file format for per-branch
+// transfer functions, "arbor-transfer-functions/1": for every kept branch
+// its value domain, control points (the editable form) and the baked RGBA
+// lookup table (what renderers use), plus everything needed to reproduce
+// it: the generator and depictor with their parameters, the simplifier and
+// its cut.
+#pragma once
+
+#include "stage_results.hpp"
+
+#include "host/tf_generation.hpp"
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace arbor::pipeline {
+
+// Writes the transfer functions of a result; `source` names the volume.
+void write_transfer_functions(const std::filesystem::path &path, const TransferFunctionsResult &result,
+                              const std::string &source);
+
+// What `arbor render` needs back from a file: how the tree was simplified
+// (to rebuild the labels), each branch's extremum (to check the rebuilt
+// tree is the same), and the functions.
+struct StoredTransferFunctions {
+    std::string source, simplifier_id, cut;
+    std::vector<int64_t> extremum_vertex;
+    std::shared_ptr<TransferFunctions> functions;
+};
+
+// Throws std::invalid_argument naming the file and what is wrong with it.
+StoredTransferFunctions read_transfer_functions(const std::filesystem::path &path);
+
+} // namespace arbor::pipeline
