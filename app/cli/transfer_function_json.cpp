@@ -77,7 +77,9 @@ void write_transfer_functions(const std::string &path, const TransferFunctionFil
             j.field("label", b);
             j.field("parent", tree.parent[b]);
             j.field("depth", tree.depth[b]);
-            j.field("kind", b == 0 ? "root" : (tree.extremum_kind[b] == ARBOR_EXTREMUM_MINIMUM ? "minimum" : "maximum"));
+            j.field("kind", b == 0                                           ? "root"
+                            : tree.extremum_kind[b] == ARBOR_EXTREMUM_MINIMUM ? "minimum"
+                                                                              : "maximum");
             j.field("extremum_vertex", tree.extremum_vertex[b]);
             if (f.depiction)
                 j.field("role", role_name(f.depiction->role[b]));
