@@ -65,7 +65,9 @@ void add_tree_command(CLI::App &app, Context &context)
         file.volume = filtered->volume.get();
         file.tree = &tree->tree;
         file.branches = &decomposition->branches;
-        file.timings = &tree->timings;
+        std::vector<topology::StageTiming> timings = tree->timings;
+        timings.push_back({"branches+measures", decomposition->seconds});
+        file.timings = &timings;
         file.cut = cut ? &cut->cut : nullptr;
         io::write_contour_tree_json(a->json, file);
         if (cut && !a->labels.empty()) {

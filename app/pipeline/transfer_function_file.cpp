@@ -86,7 +86,9 @@ void write_transfer_functions(const std::filesystem::path &path, const TransferF
             j.field("label", b);
             j.field("parent", tree.parent[b]);
             j.field("depth", tree.depth[b]);
-            j.field("kind", b == 0 ? "root" : (tree.extremum_kind[b] == ARBOR_EXTREMUM_MINIMUM ? "minimum" : "maximum"));
+            j.field("kind", b == 0                                           ? "root"
+                            : tree.extremum_kind[b] == ARBOR_EXTREMUM_MINIMUM ? "minimum"
+                                                                              : "maximum");
             j.field("extremum_vertex", tree.extremum_vertex[b]);
             if (depiction)
                 j.field("role", role_name(depiction->role[b]));

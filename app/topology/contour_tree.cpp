@@ -19,6 +19,19 @@ const char *node_kind_name(NodeKind kind)
     return "?";
 }
 
+HugeVector<uint32_t> arc_interior_voxels(const ContourTree &tree)
+{
+    HugeVector<uint32_t> count(tree.arc_count(), 0);
+    const uint32_t *arc = tree.vertex_arc.data();
+    for (std::size_t v = 0; v < tree.vertex_arc.size(); ++v)
+        if (arc[v] != kNoArc)
+            ++count[arc[v]];
+    for (const uint32_t v : tree.node_vertex)
+        if (arc[v] != kNoArc)
+            --count[arc[v]];
+    return count;
+}
+
 namespace {
 
 // What the merge keeps per vertex, packed into 16 bytes so that one cache

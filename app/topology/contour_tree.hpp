@@ -53,6 +53,10 @@ struct ContourTree {
     std::size_t arc_count() const { return arc_lo.size(); }
 };
 
+// Per arc, the voxels that lie inside it: those the augmentation puts on
+// the arc, less the nodes (which are counted on their own).
+HugeVector<uint32_t> arc_interior_voxels(const ContourTree &tree);
+
 // Bytes per vertex the merge needs as work space.
 inline constexpr std::size_t kMergeWorkBytes = 16;
 

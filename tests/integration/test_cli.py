@@ -277,25 +277,62 @@ class Topology(unittest.TestCase):
         out = SCRATCH / "phantom-tree.json"
         code, _, err = arbor("tree", "--phantom", "head", "--phantom-size", 48, "--json", out, "--timings")
         j = json.loads(out.read_text())
-        self.assertEqual(j["format"], "arbor-contour-tree/1")
-        self.assertEqual(len(j["arcs"]), len(j["nodes"]) - 1)
-        kinds = {n["kind"] for n in j["nodes"]}
+        self.assertEqual(j["format"], "arbor-contour-tree/2")
+        nodes, arcs, br = j["nodes"], j["arcs"], j["branches"]
+        # Tables of columns: every column has an entry per node, arc or branch.
+        n = len(nodes["vertex"])
+        for key in ("kind", "value", "branch"):
+            self.assertEqual(len(nodes[key]), n, key)
+        self.assertEqual(len(arcs["lower"]), n - 1)
+        for key in ("upper", "interior_voxels", "branch"):
+            self.assertEqual(len(arcs[key]), n - 1, key)
+        kinds = {nodes["kind_names"][k] for k in nodes["kind"]}
         self.assertTrue({"minimum", "maximum"} <= kinds)
-        root = j["branches"][0]
-        self.assertEqual(root["kind"], "root")
-        self.assertEqual(root["measures"]["volume"], 48 ** 3)
-        self.assertEqual(root["relative_measures"]["persistence"], 1)
-        for b in j["branches"][1:]:
-            parent = j["branches"][b["parent"]]
-            self.assertEqual(b["depth"], parent["depth"] + 1)
-            self.assertIn(b["id"], parent["children"])
-            self.assertLessEqual(b["measures"]["volume"], parent["measures"]["volume"])
+        # Every voxel is a node or lies inside exactly one arc.
+        self.assertEqual(sum(arcs["interior_voxels"]) + n, 48 ** 3)
+        measures = br["measures"]
+        count = len(br["kind"])
+        for column in [br[k] for k in ("parent", "depth", "extremum_node", "saddle_node", "importance")] + \
+                [measures[k] for k in measures]:
+            self.assertEqual(len(column), count)
+        kind = lambda b: br["kind_names"][br["kind"][b]]
+        # Derived as README.md says: relative = measure / the root's (0 when
+        # that is 0), children from the parents, positions from the geometry.
+        relative = lambda key, b: measures[key][b] / measures[key][0] if measures[key][0] > 0 else 0
+        children = {b: [] for b in range(count)}
+        for b in range(1, count):
+            children[br["parent"][b]].append(b)
+        vol = j["volume"]
+        dims, spacing, origin, d = vol["dims"], vol["spacing_mm"], vol["origin_mm"], vol["direction"]
+
+        def position(vertex):
+            ijk = (vertex % dims[0], vertex // dims[0] % dims[1], vertex // (dims[0] * dims[1]))
+            g = [s * c for s, c in zip(spacing, ijk)]
+            return [origin[r] + sum(d[3 * r + c] * g[c] for c in range(3)) for r in range(3)]
+
+        corners = [position(i + dims[0] * (j_ + dims[1] * k)) for i in (0, dims[0] - 1) for j_ in (0, dims[1] - 1)
+                   for k in (0, dims[2] - 1)]
+        self.assertEqual(kind(0), "root")
+        self.assertEqual(measures["volume"][0], 48 ** 3)
+        self.assertEqual(relative("persistence", 0), 1)
+        for b in range(1, count):
+            parent = br["parent"][b]
+            self.assertLess(parent, b)  # parents come first
+            self.assertEqual(br["depth"][b], br["depth"][parent] + 1)
+            self.assertIn(b, children[parent])
+            self.assertLessEqual(measures["volume"][b], measures["volume"][parent])
             for key in ("persistence", "volume", "volume-mm3", "hypervolume", "relative-hypervolume"):
-                self.assertGreaterEqual(b["measures"][key], 0)
-                self.assertLessEqual(b["relative_measures"][key], 1.0 + 1e-9)
-            self.assertEqual(len(b["extremum"]["position_mm"]), 3)
-        self.assertAlmostEqual(j["branches"][1]["measures"]["volume-mm3"],
-                               j["branches"][1]["measures"]["volume"] * (200 / 48) ** 3, places=3)
+                self.assertGreaterEqual(measures[key][b], 0)
+                self.assertLessEqual(relative(key, b), 1.0 + 1e-9)
+            p = position(nodes["vertex"][br["extremum_node"][b]])
+            self.assertEqual(len(p), 3)
+            for axis in range(3):
+                self.assertGreaterEqual(p[axis], min(c[axis] for c in corners) - 1e-9)
+                self.assertLessEqual(p[axis], max(c[axis] for c in corners) + 1e-9)
+        # The children of a branch are consecutive (breadth first).
+        for kids in children.values():
+            self.assertEqual(kids, list(range(kids[0], kids[0] + len(kids))) if kids else [])
+        self.assertAlmostEqual(measures["volume-mm3"][1], measures["volume"][1] * (200 / 48) ** 3, places=3)
         for stage in ("sort", "join+split trees", "merge", "total", "peak memory"):
             self.assertIn(stage, err)
 
@@ -304,8 +341,13 @@ class Topology(unittest.TestCase):
         arbor("tree", "--phantom", "head", "--phantom-size", 48, "--phantom-noise", 4, "--json", out,
               "--keep", 6, "--labels", labels)
         j = json.loads(out.read_text())
-        self.assertEqual(len(j["simplified"]["kept_branches"]), 6)
-        self.assertEqual(sum(1 for b in j["branches"] if b["kept"]), 6)
+        kept = j["simplified"]["kept_branches"]
+        self.assertEqual(len(kept["branch"]), 6)
+        self.assertEqual(len(kept["parent_label"]), 6)
+        # Six distinct branches of the tree, the root first.
+        self.assertEqual(len(set(kept["branch"])), 6)
+        self.assertTrue(all(0 <= b < len(j["branches"]["kind"]) for b in kept["branch"]))
+        self.assertEqual(kept["branch"][0], 0)
         info_labels = info(labels)
         self.assertEqual(info_labels["dims"], [48, 48, 48])
         self.assertEqual(info_labels["stored"]["min"], 0)
@@ -360,8 +402,8 @@ class Topology(unittest.TestCase):
                 out = SCRATCH / "flat.json"
                 arbor("tree", p, "--json", out)
                 j = json.loads(out.read_text())
-                self.assertEqual(len(j["branches"]), 1)
-                self.assertEqual(j["branches"][0]["measures"]["volume"], n)
+                self.assertEqual(len(j["branches"]["kind"]), 1)
+                self.assertEqual(j["branches"]["measures"]["volume"][0], n)
 
 
 if __name__ == "__main__":
@@ -731,7 +773,7 @@ class Denoise(unittest.TestCase):
         # The same through the generated flag, and on the other commands.
         arbor("tree", *self.NOISY, "--filter", "gaussian", "--gaussian.sigma", 4, "--json", SCRATCH / "t.json")
         t = json.loads((SCRATCH / "t.json").read_text())
-        self.assertEqual(len(t["branches"]), b["contour_tree"]["branches"])
+        self.assertEqual(len(t["branches"]["kind"]), b["contour_tree"]["branches"])
         arbor("convert", *self.NOISY, "--filter", "median:size=3", "-o", SCRATCH / "median.nrrd")
         self.assertEqual(info(SCRATCH / "median.nrrd")["dims"], [64, 64, 64])
 

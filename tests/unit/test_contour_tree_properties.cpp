@@ -414,6 +414,36 @@ TEST(ContourTreeProperties, NodesDegreesAndAugmentation)
     });
 }
 
+// Every voxel is a node or lies inside one arc: the interior counts are the
+// regular vertices the augmentation puts on each arc.
+TEST(ContourTreeProperties, ArcInteriorVoxelsCountTheRegularVerticesOfEachArc)
+{
+    for_every_grid([](const Sample &s) -> std::string {
+        const ContourTree &t = s.staged;
+        const HugeVector<uint32_t> interior = arc_interior_voxels(t);
+        if (interior.size() != t.arc_count())
+            return std::to_string(interior.size()) + " counts for " + std::to_string(t.arc_count()) + " arcs";
+        std::vector<char> is_node(t.vertex_arc.size(), 0);
+        for (const uint32_t v : t.node_vertex)
+            is_node[v] = 1;
+        std::vector<uint32_t> want(t.arc_count(), 0);
+        for (uint32_t v = 0; v < t.vertex_arc.size(); ++v)
+            if (!is_node[v])
+                ++want[t.vertex_arc[v]];
+        uint64_t total = t.node_count();
+        for (std::size_t a = 0; a < t.arc_count(); ++a) {
+            if (interior[a] != want[a])
+                return "arc " + std::to_string(a) + ": " + std::to_string(interior[a]) + " interior voxels, " +
+                       std::to_string(want[a]) + " regular vertices on it";
+            total += interior[a];
+        }
+        if (total != t.vertex_arc.size())
+            return "nodes and interiors add up to " + std::to_string(total) + " of " +
+                   std::to_string(t.vertex_arc.size()) + " voxels";
+        return "";
+    });
+}
+
 // The pipeline (with its shared work space) builds the same tree as the
 // stages run one by one, and does not fail on any valid volume.
 TEST(ContourTreeProperties, PipelineSucceedsAndBuildsTheStagedTree)
