@@ -87,7 +87,8 @@ int main(int argc, char **argv)
     } catch (const pipeline::SettingError &e) {
         // The pipeline names the parameter; the user typed a flag.
         const std::string flag = context.flag_names.flag_of(e.plugin_id, e.param_id);
-        log_message(ARBOR_LOG_ERROR, "", std::string(e.what()) + (flag.empty() ? "" : " (give " + flag + ")"));
+        const char *how = e.problem == pipeline::SettingError::Problem::Missing ? " (give " : " (from ";
+        log_message(ARBOR_LOG_ERROR, "", std::string(e.what()) + (flag.empty() ? "" : how + flag + ")"));
         return 1;
     } catch (const std::exception &e) {
         if (interrupt.interrupted()) {

@@ -227,7 +227,8 @@ void write_run_report(const std::filesystem::path &path, const RunReport &r)
     md << "\n## Stage runs\n\n| stage | runs |\n|---|---:|\n";
     for (const auto &[stage, n] : j["stage_runs"].items())
         md << "| " << stage << " | " << n << " |\n";
-    write_text(path, j.dump(2) + "\n");
+    // Non-UTF-8 bytes (a file name in another character set) become U+FFFD.
+    write_text(path, j.dump(2, ' ', false, json::error_handler_t::replace) + "\n");
     std::filesystem::path md_path = path;
     md_path.replace_extension(".md");
     write_text(md_path, md.str());

@@ -84,7 +84,7 @@ void apply_setting(PluginInstance &instance, const PluginSetting &setting)
             std::string known;
             for (const arbor_param_desc *p : instance.param_descriptions())
                 known += (known.empty() ? "" : ", ") + std::string(p->id);
-            throw SettingError(instance.id(), key,
+            throw SettingError(SettingError::Problem::Unknown, instance.id(), key,
                                instance.id() + " has no parameter '" + key + "' (it has: " +
                                    (known.empty() ? "none" : known) + ")");
         }
@@ -92,7 +92,7 @@ void apply_setting(PluginInstance &instance, const PluginSetting &setting)
             const ParamText value = parse_param_value(*d, text);
             instance.set_param(key, value.value);
         } catch (const std::exception &e) {
-            throw SettingError(instance.id(), key, instance.id() + ": " + e.what());
+            throw SettingError(SettingError::Problem::Invalid, instance.id(), key, instance.id() + ": " + e.what());
         }
     }
 }
@@ -101,7 +101,7 @@ void require_parameters(const PluginInstance &instance, const PluginSetting &set
 {
     for (const arbor_param_desc *d : instance.param_descriptions())
         if ((d->flags & ARBOR_PARAM_FLAG_REQUIRED) && !setting.params.count(d->id))
-            throw SettingError(instance.id(), d->id,
+            throw SettingError(SettingError::Problem::Missing, instance.id(), d->id,
                                instance.id() + " needs parameter '" + std::string(d->id) + "' (" +
                                    (d->hint && *d->hint ? std::string(d->hint) + "; " : "") +
                                    describe_param_domain(*d) + ")");

@@ -25,10 +25,13 @@ namespace arbor::pipeline {
 // (the CLI names the flag).
 class SettingError : public std::invalid_argument {
 public:
-    SettingError(std::string plugin_id, std::string param_id, const std::string &message)
-        : std::invalid_argument(message), plugin_id(std::move(plugin_id)), param_id(std::move(param_id))
+    enum class Problem { Unknown, Invalid, Missing };
+    SettingError(Problem problem, std::string plugin_id, std::string param_id, const std::string &message)
+        : std::invalid_argument(message), problem(problem), plugin_id(std::move(plugin_id)),
+          param_id(std::move(param_id))
     {
     }
+    Problem problem;
     std::string plugin_id, param_id;
 };
 

@@ -12,6 +12,8 @@ namespace arbor::pipeline {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+// Written in the order people read it (format first), not sorted.
+using ordered = nlohmann::ordered_json;
 
 namespace {
 
@@ -36,7 +38,7 @@ std::string stored_path(const fs::path &p, const fs::path &folder)
     return (ec ? p : absolute).generic_string();
 }
 
-json typed_value(const arbor_param_desc *d, const std::string &text, const fs::path &folder)
+ordered typed_value(const arbor_param_desc *d, const std::string &text, const fs::path &folder)
 {
     if (!d)
         return text;
@@ -53,25 +55,26 @@ json typed_value(const arbor_param_desc *d, const std::string &text, const fs::p
             std::from_chars(part.data(), part.data() + part.size(), x);
             numbers.push_back(x);
         }
-        if (d->components == 1 && numbers.size() == 1)
-            return numbers[0];
-        return numbers;
+        ordered out = ordered::array();
+        for (const double x : numbers)
+            out.push_back(d->type == ARBOR_PARAM_INT ? ordered(static_cast<int64_t>(x)) : ordered(x));
+        return d->components == 1 && out.size() == 1 ? out[0] : out;
     }
     }
 }
 
-json plugin_json(const PluginSetting &s, const PluginCatalog &catalog, const fs::path &folder)
+ordered plugin_json(const PluginSetting &s, const PluginCatalog &catalog, const fs::path &folder)
 {
     if (s.empty() && s.params.empty())
         return nullptr;
-    json j = json::object();
+    ordered j = ordered::object();
     if (!s.id.empty()) {
         j["id"] = s.id;
         j["version"] = s.version;
     }
     const std::vector<const arbor_param_desc *> descs =
         s.id.empty() ? std::vector<const arbor_param_desc *>{} : catalog.descriptions(s.id);
-    json params = json::object();
+    ordered params = ordered::object();
     for (const auto &[key, text] : s.params) {
         const arbor_param_desc *d = nullptr;
         for (const arbor_param_desc *x : descs)
@@ -210,11 +213,11 @@ private:
 
 std::string session_text(const Document &d, const PluginCatalog &catalog, const fs::path &folder)
 {
-    json j = json::object();
+    ordered j = ordered::object();
     j["format"] = kSessionFormat;
     j["written_by"] = std::string("arbor ") + ARBOR_HOST_VERSION;
 
-    json input = json::object();
+    ordered input = ordered::object();
     if (d.input.phantom) {
         const PhantomInput &p = *d.input.phantom;
         input["phantom"] = {{"kind", p.kind}, {"size", p.size}, {"noise", p.noise}, {"blobs", p.blobs},
@@ -225,7 +228,7 @@ std::string session_text(const Document &d, const PluginCatalog &catalog, const 
     }
     j["input"] = input;
 
-    j["filters"] = json::array();
+    j["filters"] = ordered::array();
     for (const PluginSetting &f : d.filters)
         j["filters"].push_back(plugin_json(f, catalog, folder));
     j["simplifier"] = plugin_json(d.simplifier, catalog, folder);
@@ -237,19 +240,19 @@ std::string session_text(const Document &d, const PluginCatalog &catalog, const 
         j["cut"] = {{"knee", true}};
 
     const Appearance &a = d.appearance;
-    json look = json::object();
+    ordered look = ordered::object();
     look["relation"] = plugin_json(a.depictor, catalog, folder);
-    look["selected_branch"] = a.selected ? json(*a.selected) : json(nullptr);
+    look["selected_branch"] = a.selected ? ordered(*a.selected) : ordered(nullptr);
     look["generator"] = plugin_json(a.generator, catalog, folder);
     look["lut_size"] = a.lut_size;
     look["transfer_functions_file"] =
-        a.transfer_functions_file.empty() ? json(nullptr) : json(stored_path(a.transfer_functions_file, folder));
+        a.transfer_functions_file.empty() ? ordered(nullptr) : ordered(stored_path(a.transfer_functions_file, folder));
     look["legend"] = plugin_json(a.legend, catalog, folder);
     look["legend_size"] = a.legend_size;
     j["appearance"] = look;
 
     const ViewChoice &v = d.view;
-    json view = json::object();
+    ordered view = ordered::object();
     view["camera"] = {{"azimuth", v.orbit.azimuth},
                       {"elevation", v.orbit.elevation},
                       {"zoom", v.orbit.zoom},
@@ -259,7 +262,14 @@ std::string session_text(const Document &d, const PluginCatalog &catalog, const 
     view["background"] = v.background;
     view["renderer"] = plugin_json(v.renderer, catalog, folder);
     j["view"] = view;
-    return j.dump(2) + "\n";
+    try {
+        return j.dump(2) + "\n";
+    } catch (const ordered::type_error &) {
+        // A replaced byte would make the session name a file that does not exist.
+        throw SessionError("a session stores its paths as UTF-8, and " +
+                           (d.input.path.empty() ? std::string("a parameter's text") : d.input.path.string()) +
+                           " is not: rename it, or run without --save-session");
+    }
 }
 
 void write_session(const fs::path &path, const Document &document, const PluginCatalog &catalog)

@@ -275,7 +275,7 @@ class Topology(unittest.TestCase):
 
     def test_tree_json_describes_nodes_arcs_and_branches(self):
         out = SCRATCH / "phantom-tree.json"
-        code, _, err = arbor("tree", "--phantom", "head", "--phantom-size", 48, "--json", out, "--timings")
+        code, _, err = arbor("tree", "--phantom", "head", "--phantom-size", 48, "--json", out, "--timings", "--no-cache")
         j = json.loads(out.read_text())
         self.assertEqual(j["format"], "arbor-contour-tree/2")
         nodes, arcs, br = j["nodes"], j["arcs"], j["branches"]

@@ -515,7 +515,8 @@ class DicomRobustness(unittest.TestCase):
         self.assertIn("no series '1.2.3.4'", err)
         code, _, err = arbor("info", DATA / "tooth/tooth.nhdr", "--series", "1", check=False)
         self.assertEqual(code, 1)
-        self.assertIn("--series applies to DICOM input", err)
+        self.assertIn("tooth.nhdr is read by org.arbor.importer.nrrd, which has no parameter 'series' (from --series)",
+                      err)
 
 
 def info_dims(*args):

@@ -130,7 +130,7 @@ class Sweeps(unittest.TestCase):
         self.assertEqual(r["stage_runs"], {"import": 1, "filter": 1, "contour_tree": 1, "decomposition": 1, "cut": 1,
                                            "labels": 1, "depiction": 6, "transfer_functions": 6, "render": 6,
                                            "legend": 6})
-        self.assertEqual([run["image"] for run in r["runs"]], [str(out.parent / n) for n in names])
+        self.assertEqual([run["output"]["image"] for run in r["runs"]], [str(out.parent / n) for n in names])
         self.assertEqual([run["caption"] for run in r["runs"]][:2], ["Q 30, ramp", "Q 30, hat"])
         # The runs differ in their look only, and do differ.
         pixels = {n: png_pixels(out.parent / n) for n in names}
@@ -220,7 +220,7 @@ class TreeCache(unittest.TestCase):
 class Interrupt(unittest.TestCase):
     def test_ctrl_c_cancels_the_run_promptly(self):
         env = dict(os.environ, HOME=str(SCRATCH / "home"))
-        p = subprocess.Popen([ARBOR, "run", "--phantom", "head", "--phantom-size", 320, "--phantom-noise", 12,
+        p = subprocess.Popen([ARBOR, "run", "--phantom", "head", "--phantom-size", "320", "--phantom-noise", "12",
                               "--no-cache", "-o", str(SCRATCH / "never.png")], stderr=subprocess.PIPE, text=True,
                              env=env)
         time.sleep(2.5)
