@@ -8,6 +8,7 @@ Run by ctest like test_cli.py (same environment variables).
 import json
 import os
 import pathlib
+import shutil
 import signal
 import subprocess
 import time
@@ -62,6 +63,19 @@ class Sessions(unittest.TestCase):
                            cwd="/", timeout=600)
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertEqual(png_pixels(first), png_pixels(again))
+
+    def test_a_dicom_series_is_saved_by_its_uid_not_its_row(self):
+        import pydicom
+        variants = DATA / "dicom_pydicom_variants"
+        uid = pydicom.dcmread(variants / "emri_small.dcm", stop_before_pixels=True).SeriesInstanceUID
+        s, a = SCRATCH / "s5" / "d.json", SCRATCH / "s5" / "d.png"
+        arbor("run", variants, "--series", 2, "--width", 48, "--height", 48, "-o", a, "--save-session", s)
+        importer = session(s)["input"]["importer"]
+        self.assertEqual(importer["id"], "org.arbor.importer.dicom")
+        self.assertEqual(importer["parameters"]["series"], uid)
+        self.assertEqual(importer["parameters"]["missing-slices"], "refuse")
+        arbor("run", "--session", s, "-o", SCRATCH / "s5" / "again.png")
+        self.assertEqual(png_pixels(a), png_pixels(SCRATCH / "s5" / "again.png"))
 
     def test_flags_beside_a_session_override_it(self):
         a, s = SCRATCH / "s3" / "a.png", SCRATCH / "s3" / "s.json"
@@ -176,6 +190,7 @@ class Labels(unittest.TestCase):
 
 class TreeCache(unittest.TestCase):
     def env(self, name):
+        shutil.rmtree(SCRATCH / name, ignore_errors=True)  # scratch outlives a test run
         return {"ARBOR_CACHE_DIR": str(SCRATCH / name)}
 
     def test_a_second_run_reads_the_tree_and_a_damaged_entry_is_rebuilt(self):
@@ -213,6 +228,7 @@ class TreeCache(unittest.TestCase):
 
     def test_the_default_folder_is_the_users_cache(self):
         home = SCRATCH / "home-cache"
+        shutil.rmtree(home, ignore_errors=True)
         arbor("pairs", DATA / "bucky/bucky.nhdr", "-o", SCRATCH / "b.pairs", env={"HOME": str(home)})
         self.assertEqual(len(list((home / ".cache/arbor/contour-trees").glob("*.tree"))), 1)
 

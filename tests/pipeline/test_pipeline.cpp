@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
@@ -461,6 +462,47 @@ TEST(PipelineJobs, DestroyingAPipelineCancelsItsJobs)
         wait_running(*gate);
     } // would never return if the gate were not cancelled
     EXPECT_EQ(gate->state(), JobState::Cancelled);
+}
+
+// What a workstation does: its UI thread reads the newest finished results
+// (and the jobs' progress) every frame while a worker keeps changing the
+// view and rendering.  Under ThreadSanitizer any race in that hand-over fails.
+TEST(Pipeline, AFrontReadsSnapshotsWhileJobsRun)
+{
+    Pipeline p(test::built_plugins());
+    Document d = phantom_document(32, 3);
+    p.set_document(d);
+    p.run<Stage::Render>();
+    std::atomic<bool> done{false};
+    std::atomic<uint64_t> frames{0};
+    std::thread ui([&] {
+        while (!done) {
+            if (const auto r = p.latest<Stage::Render>()) {
+                float sum = 0;
+                for (float x : r->image.rgba)
+                    sum += x;
+                EXPECT_GE(sum, 0.0f);
+            }
+            for (const std::shared_ptr<Job> &j : p.active_jobs())
+                EXPECT_GE(j->fraction(), 0.0);
+            p.is_current(Stage::Render);
+            ++frames;
+        }
+    });
+    for (int i = 0; i < 12; ++i) {
+        d.view.orbit.azimuth = 30.0 * i;
+        d.appearance.generator.params["flow-rate"] = std::to_string(20 * (i % 4));
+        p.set_document(d);
+        if (i % 3 == 2)
+            p.run<Stage::Render>();
+        else
+            p.request(Stage::Render); // superseded by the next one, or finished
+    }
+    p.run<Stage::Render>();
+    done = true;
+    ui.join();
+    EXPECT_GT(frames.load(), 0u);
+    EXPECT_TRUE(p.is_current(Stage::Render));
 }
 
 TEST(Pipeline, JobsReportProgressAndKeepTheirLog)
