@@ -15,9 +15,11 @@ std::vector<std::string> SimplifierFlags::split(const std::string &list)
 void SimplifierFlags::add_to(CLI::App &command, Context &context, bool choice)
 {
     if (choice)
-        command.add_option("--simplifier", name_,
-                       "Simplifier plugin: an id or its last part (itri, persistence, volume, hypervolume, "
-                       "n-measure); default itri");
+        command
+            .add_option("--simplifier", name_,
+                        "Simplifier plugin: an id or its last part (itri, persistence, volume, hypervolume, "
+                        "n-measure); default itri; `arbor run` sweeps a comma list")
+            ->type_name("NAME[,NAME...]");
     flags_.add(command, context.registry, ARBOR_KIND_SIMPLIFIER, "Simplifier options");
     context.flag_names.add(flags_);
 }
@@ -34,7 +36,10 @@ void SimplifierFlags::apply(pipeline::PluginSetting &simplifier, const std::opti
 
 void CutFlags::add_to(CLI::App &command, const std::string &threshold_help)
 {
-    auto *keep = command.add_option("--keep", keep_, "Keep the N most important branches (root included)");
+    auto *keep = command
+                     .add_option("--keep", keep_,
+                                 "Keep the N most important branches (root included); `arbor run` sweeps a comma list")
+                     ->type_name("N[,N...]");
     auto *threshold = command.add_option("--threshold", threshold_, threshold_help)->check(CLI::Range(0.0, 1.0));
     keep->excludes(threshold);
 }
@@ -67,11 +72,14 @@ void AppearanceFlags::add_to(CLI::App &command, Context &context)
     generator_option_ =
         command.add_option("--generator", generator_, "Transfer-function generator (residue-flow, histogram-ramp)")
             ->group("Transfer functions");
-    command.add_option("--flow-rate", flow_rate_, "Flow rate Q (the generator's parameter flow-rate)")
+    command.add_option("--flow-rate", flow_rate_, "Flow rate Q (the generator's parameter flow-rate); `arbor run` sweeps a comma list")
+        ->type_name("Q[,Q...]")
         ->group("Transfer functions");
-    command.add_option("--shape", shape_, "Opacity shape: ramp, inverse-ramp, hat, box, peak")
+    command.add_option("--shape", shape_, "Opacity shape: ramp, inverse-ramp, hat, box, peak; `arbor run` sweeps a comma list")
+        ->type_name("SHAPE[,SHAPE...]")
         ->group("Transfer functions");
-    command.add_option("--hues", hues_, "Hue template: full, or i, V, L, I, T, Y, X with :rotation (X:30)")
+    command.add_option("--hues", hues_, "Hue template: full, or i, V, L, I, T, Y, X with :rotation (X:30); `arbor run` sweeps a comma list")
+        ->type_name("HUES[,HUES...]")
         ->group("Transfer functions");
     command.add_option("--select", select_, "Selected branch (a label of the simplified tree)")
         ->check(CLI::NonNegativeNumber)

@@ -110,46 +110,41 @@ void Pipeline::set_document(const Document &document)
     update(resolve(document));
 }
 
+template <class T> void Pipeline::set_part(T Document::*part, const T &value)
+{
+    Document d = document();
+    d.*part = value;
+    set_document(d);
+}
+
 void Pipeline::set_input(const InputChoice &input)
 {
-    Document d = this->document();
-    d.input = input;
-    set_document(d);
+    set_part(&Document::input, input);
 }
 
 void Pipeline::set_filters(const std::vector<PluginSetting> &filters)
 {
-    Document d = this->document();
-    d.filters = filters;
-    set_document(d);
+    set_part(&Document::filters, filters);
 }
 
 void Pipeline::set_simplifier(const PluginSetting &simplifier)
 {
-    Document d = this->document();
-    d.simplifier = simplifier;
-    set_document(d);
+    set_part(&Document::simplifier, simplifier);
 }
 
 void Pipeline::set_cut(const CutChoice &cut)
 {
-    Document d = this->document();
-    d.cut = cut;
-    set_document(d);
+    set_part(&Document::cut, cut);
 }
 
 void Pipeline::set_appearance(const Appearance &appearance)
 {
-    Document d = this->document();
-    d.appearance = appearance;
-    set_document(d);
+    set_part(&Document::appearance, appearance);
 }
 
 void Pipeline::set_view(const ViewChoice &view)
 {
-    Document d = this->document();
-    d.view = view;
-    set_document(d);
+    set_part(&Document::view, view);
 }
 
 std::shared_ptr<Job> Pipeline::request(Stage stage)

@@ -109,6 +109,7 @@ private:
     std::shared_ptr<const void> latest_result(Stage stage) const;
     void reap_locked();
     void update(const Document &resolved);
+    template <class T> void set_part(T Document::*part, const T &value);
     Document resolve(const Document &document) const;
 
     PluginCatalog catalog_;

@@ -75,13 +75,14 @@ protected:
         base = runs(pipeline);
     }
 
-    // Applies `change` to the document, renders again, returns what re-ran.
-    template <class F> std::map<std::string, uint64_t> after(F change)
+    // Applies `change` to the document, asks for `target` again (the
+    // render), returns what re-ran.
+    template <class F> std::map<std::string, uint64_t> after(F change, Stage target = Stage::Render)
     {
         Document d = pipeline.document();
         change(d);
         pipeline.set_document(d);
-        pipeline.run<Stage::Render>();
+        pipeline.request(target)->wait();
         auto out = reruns(base, pipeline);
         base = runs(pipeline);
         return out;
@@ -180,18 +181,9 @@ TEST_F(PipelineStages, TheLegendFollowsTheCutAndTheLookOnly)
 {
     pipeline.run<Stage::Legend>();
     base = runs(pipeline);
-    const auto legend_after = [&](auto change) {
-        Document d = pipeline.document();
-        change(d);
-        pipeline.set_document(d);
-        pipeline.run<Stage::Legend>();
-        auto out = reruns(base, pipeline);
-        base = runs(pipeline);
-        return out;
-    };
-    EXPECT_EQ(legend_after([](Document &d) { d.view.orbit.azimuth = 90; }), only({}));
-    EXPECT_EQ(legend_after([](Document &d) { d.appearance.selected = 1; }), only({"legend"}));
-    EXPECT_EQ(legend_after([](Document &d) { d.cut.keep = 6; }), only({"cut", "legend"}));
+    EXPECT_EQ(after([](Document &d) { d.view.orbit.azimuth = 90; }, Stage::Legend), only({}));
+    EXPECT_EQ(after([](Document &d) { d.appearance.selected = 1; }, Stage::Legend), only({"legend"}));
+    EXPECT_EQ(after([](Document &d) { d.cut.keep = 6; }, Stage::Legend), only({"cut", "legend"}));
     const auto legend = pipeline.latest<Stage::Legend>();
     EXPECT_EQ(legend->selected, 1u);
     EXPECT_EQ(legend->rgba.size(), std::size_t{512} * 512 * 4);
