@@ -48,14 +48,14 @@ std::shared_ptr<const void> import(StageContext &c)
         const bool probed = setting.id.empty();
         setting.id = probed ? choose_importer(c.catalog.registry(), in.path)
                             : c.catalog.find(ARBOR_KIND_IMPORTER, setting.id);
-        if (probed) // the file chose the importer: say so when it lacks a parameter given
-            for (const auto &[key, value] : setting.params) {
-                const auto descriptions = c.catalog.descriptions(setting.id);
+        if (probed) { // the file chose the importer: say so when it lacks a parameter given
+            const auto descriptions = c.catalog.descriptions(setting.id);
+            for (const auto &[key, value] : setting.params)
                 if (std::none_of(descriptions.begin(), descriptions.end(), [&](auto *d) { return key == d->id; }))
                     throw SettingError(SettingError::Problem::Unknown, setting.id, key,
                                        in.path.string() + " is read by " + setting.id + ", which has no parameter '" +
                                            key + "'");
-            }
+        }
         PluginSlot::Lease importer = c.plugins.lease(setting, &c.job);
         require_parameters(*importer, setting);
         r->volume = std::make_shared<const Volume>(
