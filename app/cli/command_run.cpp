@@ -17,6 +17,7 @@
 #include "run_report.hpp"
 #include "view_flags.hpp"
 
+#include "core/ct_tissue.hpp"
 #include "core/stopwatch.hpp"
 #include "io/contact_sheet.hpp"
 #include "io/image_output.hpp"
@@ -58,6 +59,40 @@ pipeline::Document base_document(const RunArgs &a, const pipeline::PluginCatalog
     for (const std::string &w : read.warnings)
         log_message(ARBOR_LOG_WARNING, "", w);
     return read.document;
+}
+
+// Per branch: what it is, the values (HU on CT) it spans, and its share of
+// the picture.  One line a branch for one run; a line a run for a sweep.
+void print_branches(const RenderedRun &run, const ValueMapping &mapping, bool one_line)
+{
+    const arbor_branch_tree &t = run.cut->tree->record();
+    const TransferFunctions &tf = *run.tf->functions;
+    const bool hu = mapping.unit == "HU";
+    if (run.render->image.label_visibility.empty()) {
+        std::printf("  (the renderer %s does not measure visibility)\n", run.render->renderer.id.c_str());
+        return;
+    }
+    if (one_line) {
+        std::printf("  visibility:");
+        for (uint32_t b = 0; b < t.branch_count; ++b)
+            std::printf(" %u:%.0f%%", b, 100.0 * visibility_share(run.render->image, b));
+        std::printf("\n");
+        return;
+    }
+    std::printf("  %5s %-7s %5s %-22s %-28s %10s\n", "label", "kind", "depth", hu ? "HU range" : "value range",
+                hu ? "tissues" : "", "visibility");
+    for (uint32_t b = 0; b < t.branch_count; ++b) {
+        const double lo = mapping.physical(tf.domain(b).first), hi = mapping.physical(tf.domain(b).second);
+        std::string tissues;
+        if (hu)
+            for (const std::string &name : ct_tissues_spanned(std::min(lo, hi), std::max(lo, hi)))
+                tissues += (tissues.empty() ? "" : ", ") + name;
+        char range[64];
+        std::snprintf(range, sizeof range, "%.6g .. %.6g", std::min(lo, hi), std::max(lo, hi));
+        std::printf("  %5u %-7s %5u %-22s %-28s %9.1f%%\n", b,
+                    b == 0 ? "root" : (t.extremum_kind[b] == ARBOR_EXTREMUM_MINIMUM ? "minimum" : "maximum"), t.depth[b],
+                    range, tissues.c_str(), 100.0 * visibility_share(run.render->image, b));
+    }
 }
 
 // The session of a run: the document, with the importer as it was used (the
@@ -192,6 +227,7 @@ void add_run_command(CLI::App &app, Context &context)
                         cut.decomposition->branches.branches.size(), cut.kept(),
                         cut.knee ? "knee of the ITri curve" : cut.requested.describe().c_str(),
                         run.render->image.width, run.render->image.height, 100.0 * run.coverage);
+            print_branches(run, report.filtered->volume->mapping(), sweep);
         }
         if (sweep)
             std::printf("images: %zu beside %s (the contact sheet)\n", report.runs.size(),

@@ -1,6 +1,7 @@
 #include "run_report.hpp"
 
 #include "core/atomic_file.hpp"
+#include "core/ct_tissue.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -20,8 +21,10 @@ json plugin_json(const pipeline::PluginSetting &s)
     return {{"id", s.id}, {"version", s.version}, {"parameters", s.params}};
 }
 
-// Colour (straight sRGB) and opacity range of branch b's lookup table.
-json branch_json(const arbor_branch_tree &t, const TransferFunctions &tf, uint32_t b)
+// Colour (straight sRGB) and opacity range of branch b's lookup table, its
+// share of the image's visibility, and for CT the HU it spans.
+json branch_json(const arbor_branch_tree &t, const TransferFunctions &tf, const RenderedImage &image,
+                 const ValueMapping &mapping, uint32_t b)
 {
     const float *lut = tf.lut(b);
     float lo = 1, hi = 0;
@@ -34,7 +37,7 @@ json branch_json(const arbor_branch_tree &t, const TransferFunctions &tf, uint32
     char hex[8];
     std::snprintf(hex, sizeof hex, "#%02x%02x%02x", static_cast<int>(std::lround(255 * c[0])),
                   static_cast<int>(std::lround(255 * c[1])), static_cast<int>(std::lround(255 * c[2])));
-    return {{"label", b},
+    json j = {{"label", b},
             {"parent", t.parent[b]},
             {"depth", t.depth[b]},
             {"kind", b == 0 ? "root" : (t.extremum_kind[b] == ARBOR_EXTREMUM_MINIMUM ? "minimum" : "maximum")},
@@ -44,8 +47,27 @@ json branch_json(const arbor_branch_tree &t, const TransferFunctions &tf, uint32
             {"importance", t.importance ? t.importance[b] : 0.0},
             {"opacity_range", {lo, hi}},
             {"colour", hex},
-            {"colour_srgb", {c[0], c[1], c[2]}}};
+            {"colour_srgb", {c[0], c[1], c[2]}},
+            {"visibility", image.label_visibility.empty() ? json(nullptr) : json(visibility_share(image, b))}};
+    if (mapping.unit == "HU") {
+        const double a = mapping.physical(tf.domain(b).first), z = mapping.physical(tf.domain(b).second);
+        j["hu_range"] = {std::min(a, z), std::max(a, z)};
+        j["tissues"] = ct_tissues_spanned(std::min(a, z), std::max(a, z));
+    }
+    return j;
 }
+
+} // namespace
+
+double visibility_share(const RenderedImage &image, uint32_t label)
+{
+    double total = 0;
+    for (double v : image.label_visibility)
+        total += v;
+    return total > 0 && label < image.label_visibility.size() ? image.label_visibility[label] / total : 0.0;
+}
+
+namespace {
 
 std::string fixed(double x, int digits)
 {
@@ -118,7 +140,8 @@ json run_json(const RunReport &report, const RenderedRun &run, std::vector<std::
     j["branches"] = json::array();
     const arbor_branch_tree &tree = cut.tree->record();
     for (uint32_t b = 0; b < tree.branch_count; ++b)
-        j["branches"].push_back(branch_json(tree, *run.tf->functions, b));
+        j["branches"].push_back(
+            branch_json(tree, *run.tf->functions, run.render->image, report.filtered->volume->mapping(), b));
     j["output"] = {{"image", run.image.string()}, {"covered_fraction", run.coverage}};
     if (run.legend) {
         j["output"]["legend"] = run.legend_image.string();
@@ -165,13 +188,20 @@ void markdown_run(std::ostringstream &md, const RunReport &r, const RenderedRun 
         total += s;
     }
     md << "| total | " << fixed(total, 3) << " |\n\n## Branches\n\n"
-       << "| label | parent | depth | kind | value range | opacity | colour |\n|---:|---:|---:|---|---|---|---|\n";
-    for (const json &b : j["branches"])
+       << "| label | parent | depth | kind | value range | tissues | opacity | visibility | colour |\n"
+       << "|---:|---:|---:|---|---|---|---|---:|---|\n";
+    for (const json &b : j["branches"]) {
+        std::string tissues;
+        if (b.contains("tissues"))
+            for (const json &t : b["tissues"])
+                tissues += (tissues.empty() ? "" : ", ") + t.get<std::string>();
         md << "| " << b["label"] << " | " << b["parent"] << " | " << b["depth"] << " | "
            << b["kind"].get<std::string>() << " | " << fixed(b["value_range"][0].get<double>(), 1) << " .. "
-           << fixed(b["value_range"][1].get<double>(), 1) << " | " << fixed(b["opacity_range"][0].get<double>(), 3)
-           << " .. " << fixed(b["opacity_range"][1].get<double>(), 3) << " | " << b["colour"].get<std::string>()
-           << " |\n";
+           << fixed(b["value_range"][1].get<double>(), 1) << " | " << tissues << " | "
+           << fixed(b["opacity_range"][0].get<double>(), 3) << " .. " << fixed(b["opacity_range"][1].get<double>(), 3)
+           << " | " << (b["visibility"].is_null() ? "-" : fixed(100 * b["visibility"].get<double>(), 1) + "%")
+           << " | " << b["colour"].get<std::string>() << " |\n";
+    }
 }
 
 void write_text(const std::filesystem::path &path, const std::string &text)

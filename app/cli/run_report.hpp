@@ -37,6 +37,9 @@ struct RunReport {
     std::filesystem::path contact_sheet, session, labels; // empty when not written
 };
 
+// A label's share of the image's visibility (0 when nothing is visible).
+double visibility_share(const RenderedImage &image, uint32_t label);
+
 // Writes `path` (JSON) and the same name with .md.
 void write_run_report(const std::filesystem::path &path, const RunReport &report);
 

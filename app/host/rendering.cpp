@@ -1,5 +1,6 @@
 #include "rendering.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -21,11 +22,33 @@ RenderedImage render_image(PluginInstance &renderer, const arbor_render_request 
     out.row_stride = 4 * static_cast<int64_t>(width);
     out.rgba = image.rgba.data();
     out.depth = image.depth.data();
+    // NaN: "not measured"; a renderer that measures visibility overwrites all.
+    image.label_visibility.assign(request.transfer_functions->branch_count, std::numeric_limits<double>::quiet_NaN());
+    out.label_visibility = image.label_visibility.data();
+    out.label_visibility_count = static_cast<uint32_t>(image.label_visibility.size());
     Task task(progress, std::move(stop));
     renderer.check(table.render(renderer.get(), &request, &out, task.get()), "rendering");
     for (float x : image.rgba)
         if (!(x >= 0.0f && x <= 1.0f))
             throw PluginError(ARBOR_ERROR_OUT_OF_RANGE, renderer.id() + " wrote a pixel value outside [0, 1]");
+    const auto measured = [](double v) { return !std::isnan(v); };
+    if (std::none_of(image.label_visibility.begin(), image.label_visibility.end(), measured)) {
+        image.label_visibility.clear();
+    } else {
+        // A ray's contributions sum to its opacity, at most 1: the total is
+        // at most the number of pixels.
+        double total = 0;
+        for (double v : image.label_visibility) {
+            if (!(v >= 0.0) || !std::isfinite(v))
+                throw PluginError(ARBOR_ERROR_OUT_OF_RANGE,
+                                  renderer.id() + " measured a visibility that is not a finite number >= 0 (or "
+                                                  "left some labels unmeasured)");
+            total += v;
+        }
+        if (total > 1.0001 * static_cast<double>(width) * height)
+            throw PluginError(ARBOR_ERROR_OUT_OF_RANGE,
+                              renderer.id() + " measured more visibility than the image's pixels can hold");
+    }
     return image;
 }
 

@@ -175,12 +175,16 @@ public:
         std::atomic<bool> stop{false};
         std::exception_ptr error;
         std::mutex error_mutex;
+        // Visibility per label, summed per worker, then merged.
+        std::vector<double> visibility(table_.labels(), 0.0);
         const auto work = [&] {
+            std::vector<double> mine(table_.labels(), 0.0);
             try {
                 for (uint32_t t; !stop && (t = next++) < tiles;) {
                     for (uint32_t y = t * kRows; y < std::min(out.height, (t + 1) * kRows); ++y)
                         for (uint32_t x = 0; x < out.width; ++x)
-                            cast(g, camera, shading, termination, step, jitter, request.background, x, y, out);
+                            cast(g, camera, shading, termination, step, jitter, request.background, x, y, out,
+                                 mine.data());
                     const uint32_t d = ++done;
                     if (task.cancelled())
                         stop = true;
@@ -192,6 +196,9 @@ public:
                 error = std::current_exception();
                 stop = true;
             }
+            std::lock_guard lock(error_mutex);
+            for (std::size_t l = 0; l < mine.size(); ++l)
+                visibility[l] += mine[l];
         };
         std::vector<std::thread> pool;
         for (unsigned i = 1; i < threads; ++i)
@@ -202,11 +209,16 @@ public:
         if (error)
             std::rethrow_exception(error);
         task.throw_if_cancelled();
+        if (ARBOR_HAS_FIELD(arbor_image, out.struct_size, label_visibility_count) && out.label_visibility)
+            for (uint32_t l = 0; l < out.label_visibility_count; ++l)
+                out.label_visibility[l] = l < visibility.size() ? visibility[l] : 0.0;
     }
 
 private:
+    // `visibility`: per label, what this ray's samples of it contribute (T * alpha) is added.
     void cast(const VoxelGrid &g, const Camera &camera, const Shading &shading, float termination, double step,
-              bool jitter, const float *background, uint32_t x, uint32_t y, arbor_image &out) const
+              bool jitter, const float *background, uint32_t x, uint32_t y, arbor_image &out,
+              double *visibility) const
     {
         const Ray ray = camera.ray(x, y);
         // The ray in voxel index space, clipped to the box of voxel centres.
@@ -255,7 +267,8 @@ private:
                 labelled || shading.enabled
                     ? g.index(i + (fx >= 0.5f && g.nx > 1), j + (fy >= 0.5f && g.ny > 1), k + (fz >= 0.5f && g.nz > 1))
                     : 0;
-            const float *c = table_.lookup(labelled ? g.label[nearest] : 0u, value);
+            const uint32_t label = labelled ? g.label[nearest] : 0u;
+            const float *c = table_.lookup(label, value);
             if (c[3] > 0.0f) {
                 float r = c[0], gr = c[1], b = c[2];
                 if (shading.enabled) {
@@ -276,6 +289,7 @@ private:
                 acc[1] += w * gr;
                 acc[2] += w * b;
                 acc[3] += w * c[3];
+                visibility[label] += w * c[3];
                 if (acc[3] >= 0.5f && depth == std::numeric_limits<float>::infinity())
                     depth = static_cast<float>(t); // rays start at the camera (plane): t is the distance
             }

@@ -69,7 +69,7 @@ _Static_assert(offsetof(arbor_host, version) == 24, "offset of arbor_host.versio
 _Static_assert(offsetof(arbor_host, host_data) == 32, "offset of arbor_host.host_data changed");
 _Static_assert(offsetof(arbor_host, log) == 40, "offset of arbor_host.log changed");
 _Static_assert(offsetof(arbor_host, get_extension) == 48, "offset of arbor_host.get_extension changed");
-_Static_assert(sizeof(arbor_image) == 40, "size of arbor_image changed");
+_Static_assert(sizeof(arbor_image) == 56, "size of arbor_image changed");
 _Static_assert(_Alignof(arbor_image) == 8, "alignment of arbor_image changed");
 _Static_assert(offsetof(arbor_image, struct_size) == 0, "offset of arbor_image.struct_size changed");
 _Static_assert(offsetof(arbor_image, width) == 4, "offset of arbor_image.width changed");
@@ -78,6 +78,9 @@ _Static_assert(offsetof(arbor_image, reserved0) == 12, "offset of arbor_image.re
 _Static_assert(offsetof(arbor_image, row_stride) == 16, "offset of arbor_image.row_stride changed");
 _Static_assert(offsetof(arbor_image, rgba) == 24, "offset of arbor_image.rgba changed");
 _Static_assert(offsetof(arbor_image, depth) == 32, "offset of arbor_image.depth changed");
+_Static_assert(offsetof(arbor_image, label_visibility) == 40, "offset of arbor_image.label_visibility changed");
+_Static_assert(offsetof(arbor_image, label_visibility_count) == 48, "offset of arbor_image.label_visibility_count changed");
+_Static_assert(offsetof(arbor_image, reserved1) == 52, "offset of arbor_image.reserved1 changed");
 _Static_assert(sizeof(arbor_importer_v1) == 32, "size of arbor_importer_v1 changed");
 _Static_assert(_Alignof(arbor_importer_v1) == 8, "alignment of arbor_importer_v1 changed");
 _Static_assert(offsetof(arbor_importer_v1, suffixes) == 0, "offset of arbor_importer_v1.suffixes changed");

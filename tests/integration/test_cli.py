@@ -688,6 +688,8 @@ class Run(unittest.TestCase):
         for b in r["branches"]:
             self.assertRegex(b["colour"], r"^#[0-9a-f]{6}$")
             self.assertLessEqual(b["opacity_range"][0], b["opacity_range"][1])
+            self.assertGreaterEqual(b["visibility"], 0)
+        self.assertAlmostEqual(sum(b["visibility"] for b in r["branches"]), 1.0, places=6)
         self.assertGreater(r["output"]["covered_fraction"], 0.02)
         self.assertEqual(r["output"]["image"], str(image))
         self.assertTrue(report.with_suffix(".md").exists())
@@ -703,6 +705,22 @@ class Run(unittest.TestCase):
         r = self.check_report(SCRATCH / "head" / "head.report.json", out)
         self.assertTrue(r["simplification"]["automatic"])
         self.assertEqual(png_size(SCRATCH / "head" / "head-legend.png"), (512, 512))
+        self.assertIn("visibility", stdout)
+        self.assertEqual(len([l for l in stdout.splitlines() if l.strip().endswith("%")]), len(r["branches"]))
+
+    def test_ct_branches_name_their_hounsfield_range_and_tissues(self):
+        out = SCRATCH / "ct-head.png"
+        arbor("run", DATA / "dicom_ct_head_0051", "--keep", 8, "--width", 64, "--height", 64, "-o", out)
+        r = json.loads((SCRATCH / "ct-head.report.json").read_text())
+        known = {"air", "lung", "fat", "soft tissue", "contrast", "bone"}
+        for b in r["branches"]:
+            lo, hi = b["hu_range"]
+            self.assertLessEqual(lo, hi)
+            self.assertTrue(b["tissues"] and set(b["tissues"]) <= known, b)
+        root = r["branches"][0]
+        self.assertAlmostEqual(root["hu_range"][0], -1024, delta=1)  # stored 0, intercept -1024
+        self.assertEqual(root["tissues"][0], "air")
+        self.assertEqual(root["tissues"][-1], "bone")
 
     def test_automatic_count_keeps_the_tumour_of_the_noisy_phantom(self):
         out = SCRATCH / "noisy-head.png"

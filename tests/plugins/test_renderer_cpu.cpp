@@ -157,6 +157,42 @@ TEST(CpuRayCaster, EqualValuesInDifferentBranchesGetTheirOwnColours)
     EXPECT_GT(pixel(plain, 48, 31)[1], 0.8f);
 }
 
+// Visibility per label (Correa and Ma): on a ray the contributions T * alpha
+// of its samples add up to the ray's opacity, so over the image the labels'
+// visibilities add up to the sum of the pixels' alpha (transparent
+// background); and a structure behind another is seen through what the
+// front one leaves.
+TEST(CpuRayCaster, VisibilityOfTheLabelsAddsUpToTheImagesOpacity)
+{
+    // Two slabs along z, one behind the other; the front one is label 1.
+    const Volume v = cube([](int64_t, int64_t, int64_t k) { return (k >= 10 && k <= 20) || (k >= 40 && k <= 50) ? 100.0f : 0.0f; });
+    std::vector<uint32_t> labels(kN * kN * kN, 0);
+    for (int64_t k = 0; k < kN; ++k)
+        for (int64_t i = 0; i < kN * kN; ++i)
+            labels[static_cast<std::size_t>(i + kN * kN * k)] = k < 32 ? 1 : 2;
+    for (float front_alpha : {0.05f, 0.2f, 0.6f}) {
+        TransferFunctions tf(3, kLut, 1.0);
+        step_function(tf, 0, {1, 1, 1}, 0.0f);
+        step_function(tf, 1, {1, 0, 0}, front_alpha);
+        step_function(tf, 2, {0, 0, 1}, 0.1f);
+        Scene s;
+        s.set("termination", "1");
+        s.look_along_z();
+        const RenderedImage im = s.render(v, tf, &labels);
+        ASSERT_EQ(im.label_visibility.size(), 3u);
+        double alpha_sum = 0;
+        for (std::size_t p = 0; p < std::size_t{im.width} * im.height; ++p)
+            alpha_sum += im.rgba[4 * p + 3];
+        const double total = im.label_visibility[0] + im.label_visibility[1] + im.label_visibility[2];
+        EXPECT_NEAR(total, alpha_sum, 1e-3 * alpha_sum) << front_alpha;
+        EXPECT_EQ(im.label_visibility[0], 0.0);
+        // Per ray: the front slab keeps 1 - (1 - a1)^L1 of it, the back one
+        // gets what passes: (1 - that) * (1 - (1 - a2)^L2).
+        const double front = 1 - std::pow(1 - front_alpha, 11.0), back = (1 - front) * (1 - std::pow(0.9, 11.0));
+        EXPECT_NEAR(im.label_visibility[1] / total, front / (front + back), 0.03) << front_alpha;
+    }
+}
+
 TEST(CpuRayCaster, OrbitCameraShowsThePatientsLeftOnTheRightFromTheFront)
 {
     // A blob at +x (the patient's left in LPS) and a blob at +z (superior).

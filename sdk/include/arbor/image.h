@@ -21,6 +21,19 @@ typedef struct arbor_image {
     /* [width * height] or NULL when not wanted: distance in mm from the camera
      * to where the accumulated opacity first reaches 0.5, +infinity if never. */
     float *depth;
+    /* Since ABI 1.1: check ARBOR_HAS_FIELD(arbor_image, struct_size,
+     * label_visibility_count) before using these two.
+     * [label_visibility_count] or NULL when not wanted: per label (the index
+     * of its transfer function), its visibility: the sum over the image's
+     * rays of the opacity its samples contributed, T * alpha, where T is the
+     * transparency in front of the sample (Correa and Ma's visibility
+     * histograms).  A label's share of the sum is what its structure
+     * contributes to the picture.  The host fills the array with NaN; a
+     * renderer that measures visibility writes every entry, one that cannot
+     * leaves it as it is. */
+    double *label_visibility;
+    uint32_t label_visibility_count;
+    uint32_t reserved1;
 } arbor_image;
 
 #endif /* ARBOR_IMAGE_H */
