@@ -42,6 +42,9 @@ void CutFlags::add_to(CLI::App &command, const std::string &threshold_help)
                      ->type_name("N[,N...]");
     auto *threshold = command.add_option("--threshold", threshold_, threshold_help)->check(CLI::Range(0.0, 1.0));
     keep->excludes(threshold);
+    command.add_flag("--keep-background", keep_background_,
+                     "Also keep basins and bumps that lie wholly in the background's values (the noise in the "
+                     "air), which are left out by default");
 }
 
 std::vector<std::string> CutFlags::keeps() const
@@ -59,12 +62,14 @@ std::vector<std::string> CutFlags::keeps() const
 void CutFlags::apply(pipeline::CutChoice &cut, const std::optional<std::string> &keep) const
 {
     if (keep) {
-        cut = {};
         cut.keep = std::stoull(*keep);
+        cut.threshold.reset();
     } else if (threshold_) {
-        cut = {};
         cut.threshold = *threshold_;
+        cut.keep.reset();
     }
+    if (keep_background_)
+        cut.keep_background = true;
 }
 
 void AppearanceFlags::add_to(CLI::App &command, Context &context)

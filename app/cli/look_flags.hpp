@@ -50,6 +50,7 @@ public:
 private:
     std::string keep_;
     std::optional<double> threshold_;
+    bool keep_background_ = false;
 };
 
 class AppearanceFlags {

@@ -141,7 +141,16 @@ json run_json(const RunReport &report, const RenderedRun &run, std::vector<std::
     const arbor_branch_tree &tree = cut.tree->record();
     for (uint32_t b = 0; b < tree.branch_count; ++b)
         j["branches"].push_back(
-            branch_json(tree, *run.tf->functions, run.render->image, report.filtered->volume->mapping(), b));
+            branch_json(tree, *run.render->functions, run.render->image, report.filtered->volume->mapping(), b));
+    if (const auto &balance = run.render->balance) {
+        for (uint32_t b = 0; b < tree.branch_count; ++b) {
+            j["branches"][b]["optical_depth_scale"] = balance->scale[b];
+            j["branches"][b]["visibility_before_balance"] = balance->shares_before[b];
+        }
+        j["balance"] = {{"iterations", balance->iterations}, {"views", {"anterior", "left", "superior"}}};
+    }
+    if (const auto &framing = run.render->framing)
+        j["framing"] = {{"content_fraction_unframed", framing->content_fraction}, {"scale", framing->scale}};
     j["output"] = {{"image", run.image.string()}, {"covered_fraction", run.coverage}};
     if (run.legend) {
         j["output"]["legend"] = run.legend_image.string();

@@ -48,6 +48,28 @@ void TransferFunctions::assign_points(std::vector<uint32_t> offsets, std::vector
     record_.points = points_.data();
 }
 
+std::unique_ptr<TransferFunctions> TransferFunctions::with_optical_depth(const std::vector<double> &scale) const
+{
+    const auto thicker = [](float alpha, double m) {
+        return static_cast<float>(1.0 - std::pow(1.0 - std::clamp(static_cast<double>(alpha), 0.0, 1.0), m));
+    };
+    auto out = std::make_unique<TransferFunctions>(branch_count(), lut_size(), record_.opacity_unit_distance);
+    std::vector<float> lut(std::size_t{lut_size()} * 4);
+    for (uint32_t b = 0; b < branch_count(); ++b) {
+        const double m = b < scale.size() ? scale[b] : 1.0;
+        std::copy(this->lut(b), this->lut(b) + lut.size(), lut.begin());
+        for (std::size_t i = 3; i < lut.size(); i += 4)
+            lut[i] = thicker(lut[i], m);
+        out->assign(b, domain(b), lut.data());
+    }
+    std::vector<arbor_tf_point> points = points_;
+    for (uint32_t b = 0; b < branch_count(); ++b)
+        for (uint32_t i = offsets_[b]; i < offsets_[b + 1]; ++i)
+            points[i].rgba[3] = thicker(points[i].rgba[3], b < scale.size() ? scale[b] : 1.0);
+    out->assign_points(offsets_, std::move(points));
+    return out;
+}
+
 void depict(PluginInstance &depictor, const arbor_depiction_request &request, DepictionRecord &out,
             ProgressSink *progress, std::stop_token stop)
 {

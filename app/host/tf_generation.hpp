@@ -9,6 +9,7 @@
 #include <arbor/depictor.h>
 #include <arbor/transfer_function.h>
 
+#include <memory>
 #include <vector>
 
 namespace arbor {
@@ -47,6 +48,11 @@ public:
     // the control points of every branch.
     void assign(uint32_t b, std::pair<double, double> domain, const float *rgba);
     void assign_points(std::vector<uint32_t> offsets, std::vector<arbor_tf_point> points);
+
+    // A copy whose opacities are made thicker or thinner per branch: the
+    // optical depth of branch b is multiplied by scale[b], alpha' = 1 - (1 - alpha)^scale[b]
+    // (scale 2: as if the structure were twice as dense).
+    std::unique_ptr<TransferFunctions> with_optical_depth(const std::vector<double> &scale) const;
 
 private:
     friend void generate_transfer_functions(PluginInstance &, const arbor_tf_request &, TransferFunctions &,

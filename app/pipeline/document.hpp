@@ -62,6 +62,9 @@ struct InputChoice {
 struct CutChoice {
     std::optional<std::size_t> keep;
     std::optional<double> threshold;
+    // Keep basins and bumps that lie wholly in the background's values (the
+    // noise in the air) as structures; by default they are left out.
+    bool keep_background = false;
 
     bool automatic() const { return !keep && !threshold; }
     std::string describe() const; // "keep 12", "threshold 0.01", "knee"
@@ -84,12 +87,18 @@ struct Appearance {
     // deepest one).  Empty: none.
     PluginSetting legend;
     uint32_t legend_size = 512;
+    // Scale each branch's opacity until the picture gives every structure
+    // its share (visibility_balance.hpp).
+    bool balance_visibility = true;
 
     bool operator==(const Appearance &) const = default;
 };
 
 struct ViewChoice {
     Orbit orbit;
+    // Frame what is visible (framing.hpp) rather than the grid's box; the
+    // orbit's zoom applies on top.
+    bool frame_content = true;
     uint32_t width = 512, height = 512;
     std::array<double, 4> background{0.0, 0.0, 0.0, 1.0};
     PluginSetting renderer;

@@ -19,9 +19,11 @@ struct Pipeline::Slot {
     std::vector<std::pair<StageKey, std::shared_ptr<Job>>> active; // waiting or running
     uint64_t runs = 0;
 
-    // Held by the job computing; with it, the stage's plugin instances.
+    // Held by the job computing; with it, the stage's plugin instances and
+    // whatever else it keeps between its jobs.
     std::mutex busy;
     PluginSlot plugins;
+    std::any memo;
 };
 
 Pipeline::Pipeline(const PluginRegistry &registry, PipelineOptions options)
@@ -185,7 +187,7 @@ void Pipeline::execute(const std::shared_ptr<Job> &job, std::shared_ptr<const Do
         std::erase_if(slot.active, [&](const auto &entry) { return entry.second == job; });
     };
     try {
-        StageContext context{*document, catalog_, options_, *job, slot.plugins, {}};
+        StageContext context{*document, catalog_, options_, *job, slot.plugins, slot.memo, {}};
         for (const std::shared_ptr<Job> &u : upstream)
             context.inputs[index_of(u->stage())] = u->wait(job->stop_token());
         upstream.clear(); // the results are held; the jobs may go

@@ -238,6 +238,7 @@ std::string session_text(const Document &d, const PluginCatalog &catalog, const 
         j["cut"] = {{"threshold", *d.cut.threshold}};
     else
         j["cut"] = {{"knee", true}};
+    j["cut"]["keep_background"] = d.cut.keep_background;
 
     const Appearance &a = d.appearance;
     ordered look = ordered::object();
@@ -342,6 +343,11 @@ SessionRead parse_session(const std::string &text, const fs::path &folder, const
             r.fail("cut.threshold must lie in [0, 1], not " + cut.at("threshold").dump());
     } else if (!cut.contains("knee")) {
         r.fail("cut must be {\"keep\": N}, {\"threshold\": T} or {\"knee\": true}");
+    }
+    if (cut.contains("keep_background")) {
+        if (!cut.at("keep_background").is_boolean())
+            r.fail("cut.keep_background must be true or false");
+        d.cut.keep_background = cut.at("keep_background").get<bool>();
     }
 
     const json &look = r.member(j, "appearance", "the session");

@@ -11,6 +11,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace arbor::pipeline {
@@ -82,6 +84,7 @@ std::shared_ptr<const void> filter(StageContext &c)
         r->source += " | " + describe_setting(setting, f->param_descriptions());
         r->filters.push_back(setting);
     }
+    r->background = estimate_background(*r->volume);
     r->revision = next_revision();
     r->seconds = watch.lap();
     return r;
@@ -161,13 +164,26 @@ std::shared_ptr<const void> cut(StageContext &c)
     auto r = std::make_shared<CutResult>();
     r->decomposition = d;
     r->requested = c.document.cut;
+    // The background's basins and bumps (wholly at or below its level) are
+    // not structures: never kept, their voxels go to their parents.
+    std::vector<bool> eligible;
+    const auto &background = c.input<Stage::Filter>()->background;
+    if (background && !r->requested.keep_background) {
+        const auto value = [&](uint32_t node) { return volume.value(tree->tree.node_vertex[node]); };
+        eligible.assign(d->branches.branches.size(), true);
+        for (std::size_t b = 1; b < eligible.size(); ++b) {
+            const topology::Branch &br = d->branches.branches[b];
+            eligible[b] = std::max(value(br.saddle_node), value(br.extremum_node)) > background->level;
+            r->background_branches += !eligible[b];
+        }
+    }
     if (r->requested.keep) {
-        r->cut = topology::cut_by_count(d->branches, *r->requested.keep);
+        r->cut = topology::cut_by_count(d->branches, *r->requested.keep, eligible);
     } else if (r->requested.threshold) {
-        r->cut = topology::cut_by_threshold(d->branches, *r->requested.threshold);
+        r->cut = topology::cut_by_threshold(d->branches, *r->requested.threshold, eligible);
     } else {
-        r->knee = topology::knee_branch_count(d->branches);
-        r->cut = topology::cut_by_count(d->branches, r->knee->keep);
+        r->knee = topology::knee_branch_count(d->branches, 6, 48, 50, eligible);
+        r->cut = topology::cut_by_count(d->branches, r->knee->keep, eligible);
     }
     r->tree = std::make_unique<const BranchTreeRecord>(tree->tree, d->branches, r->cut, volume);
     r->seconds = watch.lap();
@@ -271,11 +287,37 @@ std::shared_ptr<const void> transfer_functions(StageContext &c)
     request.value_range[1] = r->value_range[1];
     const auto &sp = volume.geometry().spacing;
     request.min_spacing = std::min({sp[0], sp[1], sp[2]});
+    const auto &background = c.input<Stage::Filter>()->background;
+    request.background_level = background ? background->level : std::numeric_limits<double>::quiet_NaN();
+    request.background_peak = background ? background->peak : std::numeric_limits<double>::quiet_NaN();
     auto functions = std::make_shared<TransferFunctions>(cut.tree->size(), a.lut_size, request.min_spacing);
     generate_transfer_functions(*generator, request, *functions, &c.job, c.stop());
     r->functions = std::move(functions);
     r->seconds = watch.lap();
     return r;
+}
+
+// What the render stage keeps between its jobs: the balance of the last
+// transfer functions, labels and renderer, so an orbiting camera does not
+// balance again.
+struct BalanceMemo {
+    std::shared_ptr<const TransferFunctionsResult> tf;
+    uint64_t labels_revision = 0;
+    PluginSetting renderer;
+    BalanceResult balance;
+};
+
+// The user's zoom, on top of the framing: closer, or a smaller view.
+arbor_camera zoomed(arbor_camera c, double zoom)
+{
+    if (!(zoom > 0) || zoom == 1.0)
+        return c;
+    if (c.projection == ARBOR_PROJECTION_PERSPECTIVE)
+        for (int a = 0; a < 3; ++a)
+            c.position[a] = c.focal_point[a] + (c.position[a] - c.focal_point[a]) / zoom;
+    else
+        c.parallel_scale /= zoom;
+    return c;
 }
 
 std::shared_ptr<const void> render(StageContext &c)
@@ -296,17 +338,74 @@ std::shared_ptr<const void> render(StageContext &c)
     for (int a = 0; a < 3; ++a)
         map.dims[a] = volume.geometry().dims[a];
     map.labels = labels->labels.data();
-    r->camera = orbit_camera(volume.geometry(), v.orbit);
     arbor_render_request request{};
     request.struct_size = sizeof request;
     request.volume = &view;
     request.labels = &map;
-    request.transfer_functions = &tf->functions->record();
-    request.camera = &r->camera;
     for (std::size_t i = 0; i < 4; ++i)
         request.background[i] = static_cast<float>(v.background[i]);
-    request.volume_revision = filtered->revision;
-    request.labels_revision = labels->revision;
+    // Previews see a clear background, so opacity is what was seen.
+    arbor_render_request preview_request = request;
+    std::fill(std::begin(preview_request.background), std::end(preview_request.background), 0.0f);
+    request.volume_revision = preview_request.volume_revision = filtered->revision;
+    request.labels_revision = preview_request.labels_revision = labels->revision;
+    const auto preview = [&](const TransferFunctions &functions, const arbor_camera &camera, uint32_t w,
+                             uint32_t h) {
+        arbor_render_request p = preview_request;
+        p.transfer_functions = &functions.record();
+        p.camera = &camera;
+        return render_image(*renderer, p, w, h, nullptr, c.stop());
+    };
+
+    r->functions = tf->functions;
+    if (c.document.appearance.balance_visibility) {
+        c.job.report("balancing visibility", 0.0);
+        auto *memo = std::any_cast<BalanceMemo>(&c.memo);
+        if (!memo || memo->tf != tf || memo->labels_revision != labels->revision || memo->renderer != v.renderer) {
+            try {
+                const arbor_branch_tree &t = tf->depiction->cut->tree->record();
+                BalanceResult b = balance_visibility(
+                    *tf->functions, std::vector<int32_t>(t.parent, t.parent + t.branch_count), volume.geometry(),
+                    [&](const TransferFunctions &f, const arbor_camera &cam, uint32_t size) {
+                        return preview(f, cam, size, size);
+                    },
+                    {}, c.stop());
+                c.memo = BalanceMemo{tf, labels->revision, v.renderer, std::move(b)};
+            } catch (const std::invalid_argument &e) {
+                c.job.write(ARBOR_LOG_INFO, "", std::string("visibility not balanced: ") + e.what());
+                c.memo.reset();
+            }
+            memo = std::any_cast<BalanceMemo>(&c.memo);
+        }
+        if (memo) {
+            r->balance = memo->balance;
+            r->functions = tf->functions->with_optical_depth(memo->balance.scale);
+        }
+    }
+    request.transfer_functions = &r->functions->record();
+
+    Orbit orbit = v.orbit;
+    orbit.zoom = 1.0;
+    arbor_camera camera = orbit_camera(volume.geometry(), orbit);
+    if (v.frame_content) {
+        c.job.report("framing", 0.0);
+        // Twice: a perspective view is framed exactly only at the focal plane.
+        const double longer = std::max(v.width, v.height);
+        const uint32_t pw = std::max(16u, static_cast<uint32_t>(std::lround(128.0 * v.width / longer)));
+        const uint32_t ph = std::max(16u, static_cast<uint32_t>(std::lround(128.0 * v.height / longer)));
+        for (int pass = 0; pass < 2; ++pass) {
+            const std::optional<Framing> f =
+                frame_content(camera, preview(*r->functions, camera, pw, ph), v.width, v.height);
+            if (!f)
+                break;
+            if (!r->framing)
+                r->framing = f;
+            r->framing->scale = pass == 0 ? f->scale : r->framing->scale * f->scale;
+            r->framing->camera = camera = f->camera;
+        }
+    }
+    r->camera = zoomed(camera, v.orbit.zoom);
+    request.camera = &r->camera;
     r->image = render_image(*renderer, request, v.width, v.height, &c.job, c.stop());
     r->seconds = watch.lap();
     return r;

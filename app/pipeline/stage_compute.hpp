@@ -8,6 +8,7 @@
 #include "pipeline.hpp"
 #include "plugin_slot.hpp"
 
+#include <any>
 #include <array>
 #include <memory>
 
@@ -19,6 +20,7 @@ struct StageContext {
     const PipelineOptions &options;
     Job &job;
     PluginSlot &plugins;
+    std::any &memo; // the stage's own state, kept from one of its jobs to the next
     std::array<std::shared_ptr<const void>, kStageCount> inputs; // upstream results, by stage
 
     template <Stage S> std::shared_ptr<const StageResult<S>> input() const

@@ -5,8 +5,11 @@
 #pragma once
 
 #include "document.hpp"
+#include "framing.hpp"
 #include "stage_graph.hpp"
+#include "visibility_balance.hpp"
 
+#include "core/background_level.hpp"
 #include "core/volume.hpp"
 #include "host/branch_tree_record.hpp"
 #include "host/rendering.hpp"
@@ -31,6 +34,7 @@ struct ImportResult {
 
 struct FilterResult {
     std::shared_ptr<const Volume> volume; // the import's own when the chain is empty
+    std::optional<BackgroundLevel> background; // the values that are background (core/background_level.hpp)
     std::string source;                   // "scan.nrrd | gaussian:sigma=1.5"
     std::vector<PluginSetting> filters;   // as applied
     uint64_t revision = 0;                // unique per computed volume (renderers cache on it)
@@ -55,6 +59,7 @@ struct CutResult {
     std::shared_ptr<const DecompositionResult> decomposition;
     CutChoice requested;
     std::optional<topology::KneeChoice> knee; // set when the count came from the knee
+    std::size_t background_branches = 0;      // left out as the background's basins and bumps
     topology::SimplificationCut cut;
     // The kept branches as the record depictors and generators read; branch
     // k of it is label k.
@@ -92,8 +97,12 @@ struct TransferFunctionsResult {
 
 struct RenderResult {
     PluginSetting renderer;
-    arbor_camera camera{};
+    arbor_camera camera{}; // as rendered: framed, when the view asks for it
     RenderedImage image;
+    // The transfer functions rendered: the generator's, or balanced.
+    std::shared_ptr<const TransferFunctions> functions;
+    std::optional<BalanceResult> balance;
+    std::optional<Framing> framing;
     double seconds = 0.0;
 };
 

@@ -8,11 +8,11 @@
 namespace arbor::topology {
 
 KneeChoice knee_branch_count(const BranchDecomposition &d, std::size_t min_keep, std::size_t max_keep,
-                             std::size_t max_ranks)
+                             std::size_t max_ranks, const std::vector<bool> &eligible)
 {
     std::vector<double> importance;
     for (std::size_t b = 1; b < d.branches.size(); ++b)
-        if (d.branches[b].importance > 0)
+        if (d.branches[b].importance > 0 && (eligible.empty() || eligible[b]))
             importance.push_back(d.branches[b].importance);
     const std::size_t n = std::min(importance.size(), max_ranks);
     std::partial_sort(importance.begin(), importance.begin() + static_cast<std::ptrdiff_t>(n), importance.end(),
@@ -36,7 +36,10 @@ KneeChoice knee_branch_count(const BranchDecomposition &d, std::size_t min_keep,
         }
     }
     choice.keep = std::clamp(knee + 1, min_keep, std::max(min_keep, max_keep)); // + the root
-    choice.keep = std::min(choice.keep, d.branches.size());
+    std::size_t candidates = d.branches.size();
+    if (!eligible.empty())
+        candidates = 1 + static_cast<std::size_t>(std::count(eligible.begin() + 1, eligible.end(), true));
+    choice.keep = std::min(choice.keep, candidates);
     return choice;
 }
 

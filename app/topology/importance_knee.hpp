@@ -12,6 +12,7 @@
 #include "branch_decomposition.hpp"
 
 #include <cstddef>
+#include <vector>
 
 namespace arbor::topology {
 
@@ -20,9 +21,10 @@ struct KneeChoice {
     std::size_t considered = 0;   // ranks the knee was looked for in
 };
 
-// Looks at the `max_ranks` most important non-root branches; the result is
-// clamped to [min_keep, max_keep].
+// Looks at the `max_ranks` most important non-root branches (of those
+// `eligible` marks, when it is not empty); the result is clamped to
+// [min_keep, max_keep].
 KneeChoice knee_branch_count(const BranchDecomposition &d, std::size_t min_keep = 6, std::size_t max_keep = 48,
-                             std::size_t max_ranks = 50);
+                             std::size_t max_ranks = 50, const std::vector<bool> &eligible = {});
 
 } // namespace arbor::topology

@@ -30,18 +30,21 @@ SimplificationCut finish(const BranchDecomposition &d, const std::vector<bool> &
 
 } // namespace
 
-SimplificationCut cut_by_threshold(const BranchDecomposition &d, double threshold)
+SimplificationCut cut_by_threshold(const BranchDecomposition &d, double threshold, const std::vector<bool> &eligible)
 {
     std::vector<bool> keep(d.branches.size());
     for (std::size_t b = 0; b < d.branches.size(); ++b)
-        keep[b] = d.branches[b].importance > threshold;
+        keep[b] = d.branches[b].importance > threshold && (eligible.empty() || eligible[b]);
     return finish(d, keep);
 }
 
-SimplificationCut cut_by_count(const BranchDecomposition &d, std::size_t count)
+SimplificationCut cut_by_count(const BranchDecomposition &d, std::size_t count, const std::vector<bool> &eligible)
 {
-    std::vector<uint32_t> idx(d.branches.size());
-    std::iota(idx.begin(), idx.end(), 0u);
+    std::vector<uint32_t> idx;
+    idx.reserve(d.branches.size());
+    for (uint32_t b = 0; b < d.branches.size(); ++b)
+        if (b == 0 || eligible.empty() || eligible[b])
+            idx.push_back(b);
     std::stable_sort(idx.begin(), idx.end(), [&](uint32_t a, uint32_t b) {
         return d.branches[a].importance > d.branches[b].importance;
     });

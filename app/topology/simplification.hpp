@@ -26,10 +26,14 @@ struct SimplificationCut {
     std::vector<int32_t> kept_parent; // per kept branch: index in `kept` of its nearest kept ancestor
 };
 
-// Keep branches with importance > threshold.
-SimplificationCut cut_by_threshold(const BranchDecomposition &d, double threshold);
-// Keep the `count` most important branches (root included; ties by index).
-SimplificationCut cut_by_count(const BranchDecomposition &d, std::size_t count);
+// Keep branches with importance > threshold.  `eligible`, when not empty,
+// has one entry per branch: a branch marked false is never kept (the
+// background's basins are not structures), whatever its importance.
+SimplificationCut cut_by_threshold(const BranchDecomposition &d, double threshold,
+                                   const std::vector<bool> &eligible = {});
+// Keep the `count` most important eligible branches (root included; ties by index).
+SimplificationCut cut_by_count(const BranchDecomposition &d, std::size_t count,
+                               const std::vector<bool> &eligible = {});
 
 // Voxel -> index in cut.kept, for every voxel of the tree's volume.
 std::vector<uint32_t> label_voxels(const ContourTree &tree, const BranchDecomposition &d,

@@ -40,6 +40,35 @@ float ClassTable::max_alpha(uint32_t label, float lo, float hi) const
     return m;
 }
 
+void BoundaryEmphasis::build(const VoxelGrid &g, const ClassTable &table, double strength)
+{
+    active_ = strength > 0 && !g.gradient.empty();
+    factor_.fill(1.0f);
+    if (!active_)
+        return;
+    std::array<double, 256> histogram{};
+    double total = 0;
+    const std::size_t n = g.value.size(), stride = std::max<std::size_t>(1, n / (1 << 21));
+    for (std::size_t v = 0; v < n; v += stride) {
+        const uint32_t label = g.label.empty() ? 0u : g.label[v];
+        if (table.lookup(label, g.value[v])[3] > 0.0f) {
+            histogram[g.gradient[v]] += 1;
+            total += 1;
+        }
+    }
+    std::size_t reference = 255;
+    double seen = 0;
+    for (std::size_t q = 0; q < 256 && total > 0; ++q) {
+        seen += histogram[q];
+        if (seen >= 0.85 * total) {
+            reference = std::max<std::size_t>(q, 1);
+            break;
+        }
+    }
+    for (std::size_t q = 0; q < 256; ++q)
+        factor_[q] = static_cast<float>(1.0 - strength + strength * std::min(1.0, static_cast<double>(q) / reference));
+}
+
 void Occupancy::build(const VoxelGrid &g, const ClassTable &table)
 {
     bx_ = (g.nx + kBlock - 1) / kBlock;

@@ -39,6 +39,24 @@ private:
     std::vector<float> rgba_;
 };
 
+// Opacity that emphasises boundaries, as clinical presets do: a sample's
+// opacity is scaled by how steep the field is there, so homogeneous
+// interiors thin out and structures read as surfaces.  The scale rises
+// linearly from 1 - strength on flat ground to 1 at the reference
+// steepness: the 85th percentile of the gradient magnitude over the voxels
+// the transfer functions make visible at all (so it adapts to the data and
+// to what is shown), 1 beyond.
+class BoundaryEmphasis {
+public:
+    void build(const VoxelGrid &g, const ClassTable &table, double strength);
+    float factor(uint8_t gradient) const { return factor_[gradient]; }
+    bool active() const { return active_; }
+
+private:
+    std::array<float, 256> factor_{};
+    bool active_ = false;
+};
+
 class Occupancy {
 public:
     static constexpr int64_t kBlock = 8; // the ray caster divides by it with >> 3

@@ -131,6 +131,9 @@ public:
                     sdk::ParamSpec::real("diffuse", "Diffuse", 0.7, 0.0, 1.0).group("Shading"),
                     sdk::ParamSpec::real("specular", "Specular", 0.25, 0.0, 1.0).group("Shading"),
                     sdk::ParamSpec::real("shininess", "Shininess", 24.0, 1.0, 256.0).group("Shading"),
+                    sdk::ParamSpec::real("boundary-emphasis", "Boundary emphasis", 0.8, 0.0, 1.0)
+                        .hint("Scale opacity by the steepness of the field (gradient magnitude), so structures read "
+                              "as surfaces and homogeneous interiors thin out; 0 turns it off"),
                     sdk::ParamSpec::real("termination", "Early termination opacity", 0.99, 0.5, 1.0)
                         .hint("A ray stops once its accumulated opacity reaches this"),
                     sdk::ParamSpec::boolean("jitter", "Jitter", true)
@@ -152,11 +155,14 @@ public:
         const double step = params().number("sample-distance") * g.min_spacing;
         const uint64_t print = fingerprint(tf, step) ^ (request.labels_revision * 0x9E3779B97F4A7C15ull) ^
                                reinterpret_cast<uintptr_t>(g.label.data());
-        if (print != table_print_ || request.volume_revision != table_volume_) {
+        const double emphasis = params().number("boundary-emphasis");
+        if (print != table_print_ || request.volume_revision != table_volume_ || emphasis != emphasis_) {
             table_.build(tf, step);
             occupancy_.build(g, table_);
+            boundaries_.build(g, table_, emphasis);
             table_print_ = print;
             table_volume_ = request.volume_revision;
+            emphasis_ = emphasis;
         }
         Shading shading;
         shading.enabled = params().flag("shading");
@@ -264,20 +270,22 @@ private:
             const float value = trilinear(g, i, j, k, fx, fy, fz);
             // The nearest voxel carries the label and the normal.
             const std::size_t nearest =
-                labelled || shading.enabled
+                labelled || shading.enabled || boundaries_.active()
                     ? g.index(i + (fx >= 0.5f && g.nx > 1), j + (fy >= 0.5f && g.ny > 1), k + (fz >= 0.5f && g.nz > 1))
                     : 0;
             const uint32_t label = labelled ? g.label[nearest] : 0u;
             const float *c = table_.lookup(label, value);
             if (c[3] > 0.0f) {
-                float r = c[0], gr = c[1], b = c[2];
+                const float m = boundaries_.active() ? boundaries_.factor(g.gradient[nearest]) : 1.0f;
+                const float alpha = c[3] * m;
+                float r = c[0] * m, gr = c[1] * m, b = c[2] * m;
                 if (shading.enabled) {
                     const int8_t *nv = &g.normal[3 * nearest];
                     if (nv[0] | nv[1] | nv[2]) {
                         const float nx = nv[0] / 127.0f, ny = nv[1] / 127.0f, nz = nv[2] / 127.0f;
                         const float ndl = std::fabs(nx * light[0] + ny * light[1] + nz * light[2]);
                         // Headlight: the half vector is the light direction.
-                        const float spec = shading.highlight[static_cast<std::size_t>(ndl * 256.0f)] * c[3];
+                        const float spec = shading.highlight[static_cast<std::size_t>(ndl * 256.0f)] * alpha;
                         const float lit = shading.ambient + shading.diffuse * ndl;
                         r = r * lit + spec;
                         gr = gr * lit + spec;
@@ -288,8 +296,8 @@ private:
                 acc[0] += w * r;
                 acc[1] += w * gr;
                 acc[2] += w * b;
-                acc[3] += w * c[3];
-                visibility[label] += w * c[3];
+                acc[3] += w * alpha;
+                visibility[label] += w * alpha;
                 if (acc[3] >= 0.5f && depth == std::numeric_limits<float>::infinity())
                     depth = static_cast<float>(t); // rays start at the camera (plane): t is the distance
             }
@@ -345,7 +353,9 @@ private:
     VoxelGridCache grid_;
     ClassTable table_;
     Occupancy occupancy_;
+    BoundaryEmphasis boundaries_;
     uint64_t table_print_ = 0, table_volume_ = ~uint64_t{0};
+    double emphasis_ = -1.0;
 };
 
 } // namespace

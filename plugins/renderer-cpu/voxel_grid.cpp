@@ -38,12 +38,15 @@ Mat3 inverse(const Mat3 &m)
 
 // Central differences in index space, taken to LPS by the inverse transpose
 // of the grid's matrix, normalised.  Gradients far below the field's typical
-// change per voxel count as flat (no shading there).
+// change per voxel count as flat (no shading there).  Their magnitudes are
+// kept in 8 bits relative to the 99.5th percentile: what boundary-emphasis
+// opacity needs.
 void compute_normals(VoxelGrid &g, const sdk::Task &task)
 {
     const auto [lo, hi] = std::minmax_element(g.value.begin(), g.value.end());
     const double flat = 1e-3 * (*hi - *lo) / g.min_spacing;
     g.normal.assign(3 * g.value.size(), 0);
+    std::vector<float> magnitude(g.value.size(), 0.0f);
     const Mat3 &inv = g.to_voxel; // rows of M^-1 = columns of M^-T
     for (int64_t k = 0; k < g.nz; ++k) {
         if ((k & 15) == 0)
@@ -63,6 +66,7 @@ void compute_normals(VoxelGrid &g, const sdk::Task &task)
                               inv[1] * gv[0] + inv[4] * gv[1] + inv[7] * gv[2],
                               inv[2] * gv[0] + inv[5] * gv[1] + inv[8] * gv[2]};
                 const double len = std::hypot(gw[0], gw[1], gw[2]);
+                magnitude[g.index(i, j, k)] = static_cast<float>(len);
                 if (len <= flat)
                     continue;
                 int8_t *n = &g.normal[3 * g.index(i, j, k)];
@@ -70,6 +74,16 @@ void compute_normals(VoxelGrid &g, const sdk::Task &task)
                     n[c] = static_cast<int8_t>(std::lround(127.0 * gw[c] / len));
             }
     }
+    std::vector<float> sample;
+    const std::size_t stride = std::max<std::size_t>(1, magnitude.size() / (1 << 20));
+    for (std::size_t v = 0; v < magnitude.size(); v += stride)
+        sample.push_back(magnitude[v]);
+    const auto at = sample.begin() + static_cast<std::ptrdiff_t>(0.995 * (sample.size() - 1));
+    std::nth_element(sample.begin(), at, sample.end());
+    const float top = *at > 0 ? *at : 1.0f;
+    g.gradient.resize(magnitude.size());
+    for (std::size_t v = 0; v < magnitude.size(); ++v)
+        g.gradient[v] = static_cast<uint8_t>(std::min(255.0f, std::round(255.0f * magnitude[v] / top)));
 }
 
 } // namespace

@@ -28,6 +28,8 @@ struct VoxelGrid {
     std::vector<uint32_t> label; // empty: every voxel has label 0
     uint32_t max_label = 0;
     std::vector<int8_t> normal;  // [3 * voxels]: unit world gradient * 127; 0 where the field is flat
+    // Gradient magnitude per voxel, 255 at the field's 99.5th percentile (and above).
+    std::vector<uint8_t> gradient;
     Vec3 origin{};               // LPS of voxel (0, 0, 0)
     Mat3 to_world{};             // voxel index offsets -> LPS mm (direction * spacing)
     Mat3 to_voxel{};             // its inverse

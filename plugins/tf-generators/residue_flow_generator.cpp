@@ -62,6 +62,10 @@ std::vector<sdk::ParamSpec> residue_flow_params()
     p.push_back(sdk::ParamSpec::text("hues", "Hue template", "full")
                     .group("Colour")
                     .hint("full, or a harmonic template i, V, L, I, T, Y, X with an optional rotation: X:30"));
+    p.push_back(sdk::ParamSpec::boolean("clear-background", "Clear background", true)
+                    .group("Opacity")
+                    .hint("Values at or below the background level the host found (the air around a CT, the noise "
+                          "around an MR) stay fully transparent; opacity fades in over the width of its noise"));
     p.push_back(sdk::ParamSpec::real("lightness-min", "Lightness min (L*)", 45.0, 0.0, 100.0).group("Colour"));
     p.push_back(sdk::ParamSpec::real("lightness-max", "Lightness max (L*)", 85.0, 0.0, 100.0).group("Colour"));
     p.push_back(sdk::ParamSpec::real("vividness-min", "Vividness min", 0.25, 0.0, 1.0).group("Colour"));
@@ -108,20 +112,38 @@ public:
         const std::vector<OpacityRange> ranges = residue_flow(tree, flow);
         const std::vector<BranchColour> colours = branch_colours(tree, colour, request.depiction, cache_);
         const std::vector<double> corners = shape_corners(shape);
+        // The background stays clear: opacity fades in from its level over
+        // the width of its noise, and branch intervals start above it.
+        const bool clear = params().flag("clear-background") &&
+                           ARBOR_HAS_FIELD(arbor_tf_request, request.struct_size, background_peak) &&
+                           std::isfinite(request.background_level) &&
+                           request.background_level > request.background_peak;
+        const double background = clear ? request.background_level : -INFINITY;
+        const double fade_width = clear ? request.background_level - request.background_peak : 0.0;
+        const auto fade = [&](double value) {
+            if (!clear)
+                return 1.0;
+            const double u = std::clamp((value - background) / fade_width, 0.0, 1.0);
+            return u * u * (3 - 2 * u);
+        };
         const uint32_t n = tree.size();
         auto *points = static_cast<arbor_tf_point *>(task.allocate(sizeof(arbor_tf_point) * corners.size() * n));
         const arbor_depiction *depiction = request.depiction;
         for (uint32_t b = 0; b < n; ++b) {
             if ((b & 1023) == 0)
                 task.progress(static_cast<double>(b) / n, "transfer functions");
-            // t: 0 at the saddle, 1 at the extremum (the root: minimum to maximum).
-            const double saddle = b == 0 ? request.value_range[0] : tree.saddle_value(b);
+            // t: 0 at the saddle, 1 at the extremum (the root: minimum to
+            // maximum), from where the interval leaves the background.
+            double saddle = b == 0 ? request.value_range[0] : tree.saddle_value(b);
             const double extremum = b == 0 ? request.value_range[1] : tree.extremum_value(b);
+            if (saddle < background && background < extremum)
+                saddle = background;
             const auto t_of = [&](double value) {
                 return extremum != saddle ? (value - saddle) / (extremum - saddle) : 1.0;
             };
             const auto rgba = [&](double t) {
-                double alpha = shape_opacity(shape, t, ranges[b].low, ranges[b].high);
+                double alpha = shape_opacity(shape, t, ranges[b].low, ranges[b].high) *
+                               fade(saddle + (extremum - saddle) * t);
                 if (depiction)
                     alpha *= depiction->opacity_at_saddle[b] +
                              (depiction->opacity_at_extremum[b] - depiction->opacity_at_saddle[b]) * t;

@@ -196,7 +196,7 @@ _Static_assert(_Alignof(arbor_tf_point) == 8, "alignment of arbor_tf_point chang
 _Static_assert(offsetof(arbor_tf_point, value) == 0, "offset of arbor_tf_point.value changed");
 _Static_assert(offsetof(arbor_tf_point, rgba) == 8, "offset of arbor_tf_point.rgba changed");
 _Static_assert(offsetof(arbor_tf_point, reserved0) == 24, "offset of arbor_tf_point.reserved0 changed");
-_Static_assert(sizeof(arbor_tf_request) == 56, "size of arbor_tf_request changed");
+_Static_assert(sizeof(arbor_tf_request) == 72, "size of arbor_tf_request changed");
 _Static_assert(_Alignof(arbor_tf_request) == 8, "alignment of arbor_tf_request changed");
 _Static_assert(offsetof(arbor_tf_request, struct_size) == 0, "offset of arbor_tf_request.struct_size changed");
 _Static_assert(offsetof(arbor_tf_request, reserved0) == 4, "offset of arbor_tf_request.reserved0 changed");
@@ -205,6 +205,8 @@ _Static_assert(offsetof(arbor_tf_request, depiction) == 16, "offset of arbor_tf_
 _Static_assert(offsetof(arbor_tf_request, volume) == 24, "offset of arbor_tf_request.volume changed");
 _Static_assert(offsetof(arbor_tf_request, value_range) == 32, "offset of arbor_tf_request.value_range changed");
 _Static_assert(offsetof(arbor_tf_request, min_spacing) == 48, "offset of arbor_tf_request.min_spacing changed");
+_Static_assert(offsetof(arbor_tf_request, background_level) == 56, "offset of arbor_tf_request.background_level changed");
+_Static_assert(offsetof(arbor_tf_request, background_peak) == 64, "offset of arbor_tf_request.background_peak changed");
 _Static_assert(sizeof(arbor_tf_set) == 56, "size of arbor_tf_set changed");
 _Static_assert(_Alignof(arbor_tf_set) == 8, "alignment of arbor_tf_set changed");
 _Static_assert(offsetof(arbor_tf_set, struct_size) == 0, "offset of arbor_tf_set.struct_size changed");

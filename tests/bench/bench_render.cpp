@@ -64,6 +64,7 @@ int main()
             PluginInstance vtk = test::built_plugins().create("org.arbor.renderer.vtk-reference");
             for (PluginInstance *p : {&cpu, &vtk})
                 test::set_shading(*p, shading);
+            test::plain_opacity(cpu);
             fps[shading][0] = frames_per_second(cpu, r, 4);
             fps[shading][1] = frames_per_second(vtk, r, 4);
         }

@@ -32,7 +32,7 @@ class Sessions(unittest.TestCase):
         j = session(s)
         self.assertEqual(j["format"], "arbor-session/1")
         self.assertEqual(j["input"]["phantom"], {"kind": "head", "size": 48, "noise": 4, "blobs": 0, "seed": 1})
-        self.assertEqual(j["cut"], {"keep": 7})
+        self.assertEqual(j["cut"], {"keep": 7, "keep_background": False})
         self.assertEqual(j["appearance"]["generator"]["parameters"]["shape"], "hat")
         self.assertEqual(j["view"]["camera"]["azimuth"], 30)
         _, out, _ = arbor("run", "--session", s, "-o", b)
@@ -86,7 +86,7 @@ class Sessions(unittest.TestCase):
               "--save-session", s2)
         j, j2 = session(s), session(s2)
         self.assertEqual(j2["view"]["camera"]["azimuth"], 90)
-        self.assertEqual(j2["cut"], {"keep": 5})
+        self.assertEqual(j2["cut"], {"keep": 5, "keep_background": False})
         self.assertEqual(j2["appearance"]["generator"]["parameters"]["shape"], "box")
         # ... and nothing else changed.
         self.assertEqual(j2["appearance"]["generator"]["parameters"]["flow-rate"], 30)

@@ -53,6 +53,7 @@ struct Scene {
     {
         set("shading", "false");
         set("jitter", "false");
+        set("boundary-emphasis", "0"); // the analytic cases are plain emission and absorption
         camera.struct_size = sizeof camera;
         camera.projection = ARBOR_PROJECTION_ORTHOGRAPHIC;
         camera.parallel_scale = kN / 2.0;
@@ -191,6 +192,30 @@ TEST(CpuRayCaster, VisibilityOfTheLabelsAddsUpToTheImagesOpacity)
         const double front = 1 - std::pow(1 - front_alpha, 11.0), back = (1 - front) * (1 - std::pow(0.9, 11.0));
         EXPECT_NEAR(im.label_visibility[1] / total, front / (front + back), 0.03) << front_alpha;
     }
+}
+
+// Boundary emphasis: a homogeneous slab's interior thins out (its faces keep
+// their opacity), by at most the strength; 0 turns it off.
+TEST(CpuRayCaster, BoundaryEmphasisThinsHomogeneousInteriors)
+{
+    const Volume v = cube([](int64_t, int64_t, int64_t k) { return k >= 10 && k <= 53 ? 100.0f : 0.0f; });
+    TransferFunctions tf(1, kLut, 1.0);
+    step_function(tf, 0, {1, 1, 1}, 0.05f);
+    double alpha[3];
+    const double strengths[3] = {0.0, 0.5, 1.0};
+    for (int s = 0; s < 3; ++s) {
+        Scene scene;
+        scene.set("termination", "1");
+        scene.set("boundary-emphasis", std::to_string(strengths[s]));
+        scene.look_along_z();
+        alpha[s] = pixel(scene.render(v, tf), 32, 32)[3];
+    }
+    EXPECT_GT(alpha[0], alpha[1]);
+    EXPECT_GT(alpha[1], alpha[2]);
+    // The interior (44 voxels) at half opacity, the faces whole: the optical
+    // depth stays above half of it.
+    EXPECT_GT(-std::log(1 - alpha[1]), 0.5 * -std::log(1 - alpha[0]));
+    EXPECT_GT(alpha[2], 0.0); // the faces stay
 }
 
 TEST(CpuRayCaster, OrbitCameraShowsThePatientsLeftOnTheRightFromTheFront)

@@ -55,6 +55,7 @@ TEST(VtkReference, CpuRayCasterAgreesWithVtkOnAGlobalTransferFunction)
             PluginInstance vtk = test::built_plugins().create("org.arbor.renderer.vtk-reference");
             for (PluginInstance *p : {&cpu, &vtk})
                 test::set_shading(*p, shading);
+            test::plain_opacity(cpu);
             const RenderedImage a = render_image(cpu, r, kSize, kSize);
             const RenderedImage b = render_image(vtk, r, kSize, kSize);
             const double db = psnr(a, b);

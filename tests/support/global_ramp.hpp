@@ -44,4 +44,12 @@ inline void set_shading(PluginInstance &renderer, bool on)
     renderer.set_param("shading", parse_param_value(*renderer.find_param("shading"), on ? "true" : "false").value);
 }
 
+// Plain emission and absorption, as VTK's ray caster does it: no opacity
+// scaled by the gradient (the CPU ray caster's boundary emphasis).
+inline void plain_opacity(PluginInstance &renderer)
+{
+    if (const arbor_param_desc *d = renderer.find_param("boundary-emphasis"))
+        renderer.set_param("boundary-emphasis", parse_param_value(*d, "0").value);
+}
+
 } // namespace arbor::test

@@ -43,6 +43,15 @@ typedef struct arbor_tf_request {
     const arbor_volume *volume;
     double value_range[2]; /* stored min and max of the volume */
     double min_spacing;    /* smallest voxel spacing of the volume, mm */
+    /* Since ABI 1.1 (check ARBOR_HAS_FIELD(arbor_tf_request, struct_size,
+     * background_level)): stored values at or below this are the scan's
+     * background (the air around a CT, the dark noise around an MR), which
+     * should stay transparent.  background_peak is the background's most
+     * frequent value, below the level: the distance between the two is the
+     * width of its noise.  The host found no background when the level is
+     * NaN or not above the peak (a zero-filled request has none). */
+    double background_level;
+    double background_peak;
 } arbor_tf_request;
 
 /* Output.  The host allocates domain, lut and point_offsets for branch_count

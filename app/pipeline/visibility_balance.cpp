@@ -1,0 +1,152 @@
+#include "visibility_balance.hpp"
+
+#include "core/cancelled.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+namespace arbor::pipeline {
+
+namespace {
+
+constexpr uint32_t kPreview = 64;
+constexpr int kIterations = 6;
+constexpr double kStepLimit = 6.0;   // a multiplier changes at most by this factor per iteration
+constexpr double kScaleLimit = 200.0; // nor beyond this, either way, in all
+constexpr double kSeen = 0.02;        // a pixel's opacity above which something is seen there
+
+struct Measure {
+    std::vector<double> visibility; // summed over the views
+    double mean_alpha = 0.0;        // over the pixels where something is seen
+};
+
+Measure measure(const TransferFunctions &tf, const std::vector<arbor_camera> &views, const PreviewFn &preview)
+{
+    Measure m;
+    m.visibility.assign(tf.branch_count(), 0.0);
+    double seen = 0, alpha = 0;
+    for (const arbor_camera &c : views) {
+        const RenderedImage im = preview(tf, c, kPreview);
+        if (im.label_visibility.size() != tf.branch_count())
+            throw std::invalid_argument("the renderer does not measure visibility, so there is none to balance");
+        for (uint32_t b = 0; b < tf.branch_count(); ++b)
+            m.visibility[b] += im.label_visibility[b];
+        for (std::size_t p = 3; p < im.rgba.size(); p += 4)
+            if (im.rgba[p] > kSeen) {
+                seen += 1;
+                alpha += im.rgba[p];
+            }
+    }
+    m.mean_alpha = seen > 0 ? alpha / seen : 0.0;
+    return m;
+}
+
+std::vector<double> shares_of(const std::vector<double> &v)
+{
+    const double total = std::accumulate(v.begin(), v.end(), 0.0);
+    std::vector<double> s(v.size(), 0.0);
+    if (total > 0)
+        for (std::size_t b = 0; b < v.size(); ++b)
+            s[b] = v[b] / total;
+    return s;
+}
+
+// The shares closest to `s` within the bounds: the root capped, every other
+// branch floored, the rest scaled to keep their ratios and the sum 1.
+std::vector<double> targets_for(const std::vector<double> &s, const BalanceTargets &t)
+{
+    const std::size_t n = s.size();
+    std::vector<double> out(s);
+    if (n == 1)
+        return out;
+    const double floor = std::min(t.floor, 0.9 / static_cast<double>(n - 1));
+    std::vector<bool> fixed(n, false);
+    for (int round = 0; round < 8; ++round) {
+        bool changed = false;
+        if (!fixed[0] && (out[0] > t.root_cap || out[0] < t.root_floor)) {
+            out[0] = std::clamp(out[0], t.root_floor, t.root_cap);
+            fixed[0] = changed = true;
+        }
+        for (std::size_t b = 1; b < n; ++b)
+            if (!fixed[b] && out[b] < floor) {
+                out[b] = floor;
+                fixed[b] = changed = true;
+            }
+        double fixed_sum = 0, free_sum = 0;
+        for (std::size_t b = 0; b < n; ++b)
+            (fixed[b] ? fixed_sum : free_sum) += out[b];
+        if (free_sum > 0)
+            for (std::size_t b = 0; b < n; ++b)
+                if (!fixed[b])
+                    out[b] *= (1.0 - fixed_sum) / free_sum;
+        if (!changed)
+            break;
+    }
+    return out;
+}
+
+} // namespace
+
+BalanceResult balance_visibility(const TransferFunctions &tf, const std::vector<int32_t> &parent,
+                                 const Geometry &geometry, const PreviewFn &preview, const BalanceTargets &targets,
+                                 std::stop_token stop)
+{
+    std::vector<arbor_camera> views;
+    for (const auto &[azimuth, elevation] : {std::pair{0.0, 0.0}, {90.0, 0.0}, {0.0, 80.0}}) {
+        Orbit o;
+        o.azimuth = azimuth;
+        o.elevation = elevation;
+        views.push_back(orbit_camera(geometry, o));
+    }
+    const std::size_t n = tf.branch_count();
+    BalanceResult r;
+    r.scale.assign(n, 1.0);
+    std::unique_ptr<TransferFunctions> current;
+    Measure m = measure(tf, views, preview);
+    r.shares_before = shares_of(m.visibility);
+    std::vector<double> shares = r.shares_before;
+    for (int it = 0; it < kIterations; ++it) {
+        throw_if_stopped(stop);
+        const std::vector<double> want = targets_for(shares, targets);
+        // Opacity for the picture as a whole: denser everywhere when the
+        // content is too faint to read as surfaces (never thinner).
+        const double global =
+            m.mean_alpha > 0 && m.mean_alpha < targets.coverage
+                ? std::clamp(std::log(1 - targets.coverage) / std::log(1 - m.mean_alpha), 1.0, kStepLimit)
+                : 1.0;
+        bool done = global < 1.05;
+        std::vector<double> step(n, 1.0);
+        for (std::size_t b = 0; b < n; ++b) {
+            if (shares[b] > 0)
+                step[b] = std::pow(want[b] / shares[b], 0.9);
+            else if (b != 0)
+                step[b] = kStepLimit; // unseen: denser until it shows
+            done = done && std::fabs(step[b] - 1.0) < 0.1;
+        }
+        // Hidden inside others: peel the ancestors of a structure that is
+        // still short of its floor though already many times denser.
+        std::vector<double> peel(n, 1.0);
+        for (std::size_t b = 1; b < n; ++b)
+            if (shares[b] < 0.5 * want[b] && r.scale[b] * step[b] > 8.0 * r.scale[0])
+                for (int32_t a = parent[b]; a > 0; a = parent[static_cast<std::size_t>(a)]) // the root keeps its floor
+                    peel[static_cast<std::size_t>(a)] = std::min(peel[static_cast<std::size_t>(a)], 0.6);
+        // The root follows its share alone: made denser with the rest it
+        // would take the picture back.
+        for (std::size_t b = 0; b < n; ++b)
+            r.scale[b] = std::clamp(
+                r.scale[b] * std::clamp(step[b] * peel[b] * (b == 0 ? 1.0 : global), 1 / kStepLimit, kStepLimit),
+                1 / kScaleLimit, kScaleLimit);
+        if (done)
+            break;
+        current = tf.with_optical_depth(r.scale);
+        m = measure(*current, views, preview);
+        shares = shares_of(m.visibility);
+        r.iterations = it + 1;
+    }
+    r.shares_after = shares;
+    return r;
+}
+
+} // namespace arbor::pipeline

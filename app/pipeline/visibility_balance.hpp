@@ -1,0 +1,59 @@
+// visibility_balance.hpp - opacity set from what the picture shows
+// (after Correa and Ma's visibility-driven transfer functions).  A transfer
+// function's opacities say how dense each structure should look, but what a
+// structure contributes to the image also depends on its size and on what
+// lies in front of it: a thick outer shell takes the picture, a thin inner
+// bone is lost.  So the pipeline renders small previews from fixed views,
+// measures each branch's visibility share, and scales each branch's optical
+// depth until
+//   - every kept structure gets at least `floor` of the picture,
+//   - the outermost (the root branch: the body as a whole, its skin) between
+//     `root_floor` and `root_cap`,
+//   - the content, where anything is seen, is opaque enough to read as
+//     surfaces (`coverage` of mean opacity),
+// changing nothing else: shares already within bounds keep their ratios, so
+// what the generator decided (the residue flow's peeling by Q) stays.  A
+// structure that stays hidden however dense it gets lies inside others:
+// then its ancestors in the branch tree (but the root) are thinned, as the
+// residue flow's Q would peel them.
+//
+// The views are fixed (anterior, left, superior), so the result does not
+// change as the camera orbits; the pipeline computes it once per set of
+// transfer functions and labels.
+#pragma once
+
+#include "core/volume.hpp"
+#include "host/rendering.hpp"
+#include "host/tf_generation.hpp"
+
+#include <functional>
+#include <stop_token>
+#include <vector>
+
+namespace arbor::pipeline {
+
+struct BalanceTargets {
+    double floor = 0.02;    // least share of a kept non-root structure
+    double root_floor = 0.12; // least share of the root branch: the body stays in the picture
+    double root_cap = 0.35;   // most share of the root branch
+    double coverage = 0.8;  // mean opacity over the pixels where anything is seen
+};
+
+struct BalanceResult {
+    std::vector<double> scale;                  // per branch: its optical depth's multiplier
+    std::vector<double> shares_before, shares_after; // visibility shares over the previews
+    int iterations = 0;
+};
+
+// Renders `tf` from `camera` at `size` x `size` pixels (the final render's
+// renderer, labels and volume).
+using PreviewFn = std::function<RenderedImage(const TransferFunctions &tf, const arbor_camera &camera, uint32_t size)>;
+
+// Throws when the previews measure no visibility (a renderer that does not
+// report it): then there is nothing to balance on.
+// `parent`: per branch its parent in the branch tree (-1 for the root).
+BalanceResult balance_visibility(const TransferFunctions &tf, const std::vector<int32_t> &parent,
+                                 const Geometry &geometry, const PreviewFn &preview, const BalanceTargets &targets = {},
+                                 std::stop_token stop = {});
+
+} // namespace arbor::pipeline
