@@ -120,7 +120,8 @@ void add_compare_command(CLI::App &app, Context &context)
         const pipeline::PluginCatalog &catalog = p->catalog();
         pipeline::Document d = pipeline::default_document();
         a->input.apply(d.input, catalog);
-        a->filter.apply(d.filters, catalog);
+        d.auto_denoise = false; // analysis sees the data as it is, unless a filter is asked for
+        a->filter.apply(d.filters, d.auto_denoise, catalog);
         a->cut.apply(d.cut, keeps.empty() ? std::nullopt : std::optional(keeps[0]));
         std::vector<pipeline::PluginSetting> simplifiers;
         for (const std::string &name : split_list(a->list)) {

@@ -35,7 +35,8 @@ void add_convert_command(CLI::App &app, Context &context)
         CommandPipeline p(context, false);
         pipeline::Document d = pipeline::default_document();
         a->input.apply(d.input, p->catalog());
-        a->filter.apply(d.filters, p->catalog());
+        d.auto_denoise = false; // analysis sees the data as it is, unless a filter is asked for
+        a->filter.apply(d.filters, d.auto_denoise, p->catalog());
         p->set_document(d);
         const pipeline::FilterResult &in = *p.run<pipeline::Stage::Filter>();
         io::NrrdWriteOptions w;

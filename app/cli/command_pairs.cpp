@@ -40,7 +40,8 @@ void add_pairs_command(CLI::App &app, Context &context)
         CommandPipeline p(context, !a->input.no_cache());
         pipeline::Document d = pipeline::default_document();
         a->input.apply(d.input, p->catalog());
-        a->filter.apply(d.filters, p->catalog());
+        d.auto_denoise = false; // analysis sees the data as it is, unless a filter is asked for
+        a->filter.apply(d.filters, d.auto_denoise, p->catalog());
         d.simplifier = {"persistence", "", {}};
         p->set_document(d);
         const auto filtered = p.run<Stage::Filter>();

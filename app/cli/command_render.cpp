@@ -44,7 +44,7 @@ void add_render_command(CLI::App &app, Context &context)
         const pipeline::PluginCatalog &catalog = p->catalog();
         pipeline::Document d = pipeline::default_document();
         a->input.apply(d.input, catalog);
-        a->filter.apply(d.filters, catalog);
+        a->filter.apply(d.filters, d.auto_denoise, catalog);
         d.simplifier = {stored.simplifier_id, "", {}};
         d.cut = pipeline::CutChoice::parse(stored.cut);
         d.appearance.transfer_functions_file = a->tf;

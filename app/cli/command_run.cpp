@@ -79,8 +79,8 @@ void print_branches(const RenderedRun &run, const ValueMapping &mapping, bool on
         std::printf("\n");
         return;
     }
-    std::printf("  %5s %-7s %5s %-22s %-28s %10s\n", "label", "kind", "depth", hu ? "HU range" : "value range",
-                hu ? "tissues" : "", "visibility");
+    std::printf("  %5s %-7s %5s %-22s %-36s %10s  %s\n", "label", "kind", "depth", hu ? "HU range" : "value range",
+                hu ? "tissues" : "", "visibility", "shape");
     for (uint32_t b = 0; b < t.branch_count; ++b) {
         const double lo = mapping.physical(tf.domain(b).first), hi = mapping.physical(tf.domain(b).second);
         std::string tissues;
@@ -89,9 +89,11 @@ void print_branches(const RenderedRun &run, const ValueMapping &mapping, bool on
                 tissues += (tissues.empty() ? "" : ", ") + name;
         char range[64];
         std::snprintf(range, sizeof range, "%.6g .. %.6g", std::min(lo, hi), std::max(lo, hi));
-        std::printf("  %5u %-7s %5u %-22s %-28s %9.1f%%\n", b,
+        const std::string note = tf.note(b);
+        std::printf("  %5u %-7s %5u %-22s %-36s %9.1f%%  %s\n", b,
                     b == 0 ? "root" : (t.extremum_kind[b] == ARBOR_EXTREMUM_MINIMUM ? "minimum" : "maximum"), t.depth[b],
-                    range, tissues.c_str(), 100.0 * visibility_share(run.render->image, b));
+                    range, tissues.c_str(), 100.0 * visibility_share(run.render->image, b),
+                    note.substr(0, note.find(':')).c_str());
     }
 }
 
@@ -146,7 +148,7 @@ void add_run_command(CLI::App &app, Context &context)
 
         pipeline::Document base = base_document(*a, catalog);
         a->input.apply(base.input, catalog);
-        a->filter.apply(base.filters, catalog);
+        a->filter.apply(base.filters, base.auto_denoise, catalog);
         const SweepAxes axes{a->simplifier.names(), a->cut.keeps(), a->look.flow_rates(), a->look.shapes(),
                              a->look.hues()};
         const std::vector<SweepPoint> points = sweep_points(axes);

@@ -80,7 +80,8 @@ void add_simplify_command(CLI::App &app, Context &context)
         CommandPipeline p(context, !a->input.no_cache());
         pipeline::Document d = pipeline::default_document();
         a->input.apply(d.input, p->catalog());
-        a->filter.apply(d.filters, p->catalog());
+        d.auto_denoise = false; // analysis sees the data as it is, unless a filter is asked for
+        a->filter.apply(d.filters, d.auto_denoise, p->catalog());
         const std::vector<std::string> names = a->simplifier.names(), keeps = a->cut.keeps();
         a->simplifier.apply(d.simplifier, names.empty() ? std::nullopt : std::optional(names[0]), p->catalog());
         a->cut.apply(d.cut, keeps.empty() ? std::nullopt : std::optional(keeps[0]));

@@ -58,7 +58,7 @@ void add_tf_command(CLI::App &app, Context &context)
         pipeline::Document d = pipeline::default_document();
         d.cut.keep = 12;
         a->input.apply(d.input, catalog);
-        a->filter.apply(d.filters, catalog);
+        a->filter.apply(d.filters, d.auto_denoise, catalog);
         const SweepPoint point = sweep_points(axes).front();
         a->simplifier.apply(d.simplifier, point.simplifier, catalog);
         a->cut.apply(d.cut, point.keep);

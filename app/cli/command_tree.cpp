@@ -50,7 +50,8 @@ void add_tree_command(CLI::App &app, Context &context)
         CommandPipeline p(context, !a->input.no_cache());
         pipeline::Document d = pipeline::default_document();
         a->input.apply(d.input, p->catalog());
-        a->filter.apply(d.filters, p->catalog());
+        d.auto_denoise = false; // analysis sees the data as it is, unless a filter is asked for
+        a->filter.apply(d.filters, d.auto_denoise, p->catalog());
         d.simplifier = {"persistence", "", {}};
         a->cut.apply(d.cut, keeps.empty() ? std::nullopt : std::optional<std::string>(keeps[0]));
         p->set_document(d);

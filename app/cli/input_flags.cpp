@@ -132,10 +132,12 @@ void FilterFlags::add_to(CLI::App &command, Context &context)
     context.flag_names.add(flags_);
 }
 
-void FilterFlags::apply(std::vector<pipeline::PluginSetting> &chain, const pipeline::PluginCatalog &catalog) const
+void FilterFlags::apply(std::vector<pipeline::PluginSetting> &chain, bool &auto_denoise,
+                        const pipeline::PluginCatalog &catalog) const
 {
     if (!specs_.empty()) {
         chain.clear();
+        auto_denoise = false; // the user chose: exactly these filters, or none
         for (const std::string &spec : specs_) {
             if (spec == "none") {
                 if (specs_.size() > 1)

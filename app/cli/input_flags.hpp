@@ -43,13 +43,15 @@ private:
 
 // --filter NAME[:key=value,...] (repeatable: a chain, applied in order), or
 // --filter none; each filter's parameters also as flags (--gaussian.sigma).
+// Without --filter the pipeline denoises automatically when noise dominates.
 class FilterFlags {
 public:
     void add_to(CLI::App &command, Context &context);
     bool given() const { return !specs_.empty(); }
-    // With --filter: the chain given.  Without: the filter flags apply to the
-    // filters of the chain there is (a session's).
-    void apply(std::vector<pipeline::PluginSetting> &chain, const pipeline::PluginCatalog &catalog) const;
+    // With --filter: the chain given (and no automatic denoising).  Without:
+    // the filter flags apply to the filters of the chain there is (a session's).
+    void apply(std::vector<pipeline::PluginSetting> &chain, bool &auto_denoise,
+               const pipeline::PluginCatalog &catalog) const;
 
 private:
     std::vector<std::string> specs_;

@@ -48,7 +48,8 @@ json branch_json(const arbor_branch_tree &t, const TransferFunctions &tf, const 
             {"opacity_range", {lo, hi}},
             {"colour", hex},
             {"colour_srgb", {c[0], c[1], c[2]}},
-            {"visibility", image.label_visibility.empty() ? json(nullptr) : json(visibility_share(image, b))}};
+            {"visibility", image.label_visibility.empty() ? json(nullptr) : json(visibility_share(image, b))},
+            {"generator_note", tf.note(b)}};
     if (mapping.unit == "HU") {
         const double a = mapping.physical(tf.domain(b).first), z = mapping.physical(tf.domain(b).second);
         j["hu_range"] = {std::min(a, z), std::max(a, z)};
@@ -197,8 +198,8 @@ void markdown_run(std::ostringstream &md, const RunReport &r, const RenderedRun 
         total += s;
     }
     md << "| total | " << fixed(total, 3) << " |\n\n## Branches\n\n"
-       << "| label | parent | depth | kind | value range | tissues | opacity | visibility | colour |\n"
-       << "|---:|---:|---:|---|---|---|---|---:|---|\n";
+       << "| label | parent | depth | kind | value range | tissues | opacity | visibility | colour | transfer function |\n"
+       << "|---:|---:|---:|---|---|---|---|---:|---|---|\n";
     for (const json &b : j["branches"]) {
         std::string tissues;
         if (b.contains("tissues"))
@@ -209,7 +210,7 @@ void markdown_run(std::ostringstream &md, const RunReport &r, const RenderedRun 
            << fixed(b["value_range"][1].get<double>(), 1) << " | " << tissues << " | "
            << fixed(b["opacity_range"][0].get<double>(), 3) << " .. " << fixed(b["opacity_range"][1].get<double>(), 3)
            << " | " << (b["visibility"].is_null() ? "-" : fixed(100 * b["visibility"].get<double>(), 1) + "%")
-           << " | " << b["colour"].get<std::string>() << " |\n";
+           << " | " << b["colour"].get<std::string>() << " | " << b["generator_note"].get<std::string>() << " |\n";
     }
 }
 

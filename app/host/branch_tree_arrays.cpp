@@ -56,6 +56,30 @@ const arbor_branch_tree &BranchTreeArrays::link()
     record_.measure_ids = kMeasureIds;
     record_.measures = measures.data();
     record_.relative_measures = relative.data();
+    if (!extra_ids.empty()) {
+        // One table of every column, each extra one relative to the root's.
+        const std::size_t m = kMeasureCount + extra_ids.size();
+        all_measures_.assign(n * m, 0.0);
+        all_relative_.assign(n * m, 0.0);
+        for (std::size_t b = 0; b < n; ++b) {
+            for (std::size_t c = 0; c < kMeasureCount; ++c) {
+                all_measures_[b * m + c] = measures[b * kMeasureCount + c];
+                all_relative_[b * m + c] = relative[b * kMeasureCount + c];
+            }
+            for (std::size_t e = 0; e < extra_ids.size(); ++e) {
+                const double root = extra[e].empty() ? 0.0 : extra[e][0];
+                all_measures_[b * m + kMeasureCount + e] = extra[e][b];
+                all_relative_[b * m + kMeasureCount + e] = root > 0 ? extra[e][b] / root : 0.0;
+            }
+        }
+        ids_.assign(kMeasureIds, kMeasureIds + kMeasureCount);
+        for (const std::string &id : extra_ids)
+            ids_.push_back(id.c_str());
+        record_.measure_count = static_cast<uint32_t>(m);
+        record_.measure_ids = ids_.data();
+        record_.measures = all_measures_.data();
+        record_.relative_measures = all_relative_.data();
+    }
     record_.importance = importance.empty() ? nullptr : importance.data();
     return record_;
 }

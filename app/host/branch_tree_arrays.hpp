@@ -6,6 +6,7 @@
 
 #include <arbor/branch_tree.h>
 
+#include <string>
 #include <vector>
 
 namespace arbor {
@@ -22,6 +23,10 @@ struct BranchTreeArrays {
     std::vector<double> saddle_position, extremum_position; // [3n]
     std::vector<double> measures, relative;                 // [n * kMeasureCount], row per branch
     std::vector<double> importance;                         // [n] or empty (no simplifier)
+    // Columns beyond the topology's (the host may add measures, branch_tree.h):
+    // ids, and [n] values of each.
+    std::vector<std::string> extra_ids;
+    std::vector<std::vector<double>> extra;
 
     // Every vector sized for n branches (values zero, kinds maximum, root's parent -1).
     void resize(std::size_t n);
@@ -30,6 +35,8 @@ struct BranchTreeArrays {
 
 private:
     std::vector<uint32_t> depth_, child_offsets_, children_;
+    std::vector<double> all_measures_, all_relative_; // with the extra columns
+    std::vector<const char *> ids_;
     arbor_branch_tree record_{};
 };
 

@@ -5,7 +5,8 @@
 namespace arbor {
 
 BranchTreeRecord::BranchTreeRecord(const topology::ContourTree &tree, const topology::BranchDecomposition &d,
-                                   const topology::SimplificationCut &cut, const Volume &volume)
+                                   const topology::SimplificationCut &cut, const Volume &volume,
+                                   const std::vector<topology::LabelShape> *shapes)
 {
     static_assert(BranchTreeArrays::kMeasureCount == topology::kMeasureCount);
     const std::size_t n = cut.kept.size(), m = topology::kMeasureCount;
@@ -31,6 +32,14 @@ BranchTreeRecord::BranchTreeRecord(const topology::ContourTree &tree, const topo
             a.relative[k * m + c] = d.relative(cut.kept[k], static_cast<int>(c));
         }
         a.importance[k] = std::isfinite(b.importance) ? b.importance : 1.0;
+    }
+    if (shapes) {
+        a.extra_ids = {ARBOR_MEASURE_THICKNESS, ARBOR_MEASURE_COMPACTNESS};
+        a.extra.assign(2, std::vector<double>(n, 0.0));
+        for (std::size_t k = 0; k < n && k < shapes->size(); ++k) {
+            a.extra[0][k] = (*shapes)[k].thickness_mm;
+            a.extra[1][k] = (*shapes)[k].compactness;
+        }
     }
     a.link();
 }

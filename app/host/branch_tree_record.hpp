@@ -7,14 +7,18 @@
 #include "branch_tree_arrays.hpp"
 
 #include "core/volume.hpp"
+#include "topology/label_thickness.hpp"
 #include "topology/simplification.hpp"
 
 namespace arbor {
 
 class BranchTreeRecord {
 public:
+    // `shapes`, when given: per kept label, the thickness and compactness of
+    // the voxels it labels (columns ARBOR_MEASURE_THICKNESS, _COMPACTNESS).
     BranchTreeRecord(const topology::ContourTree &tree, const topology::BranchDecomposition &d,
-                     const topology::SimplificationCut &cut, const Volume &volume);
+                     const topology::SimplificationCut &cut, const Volume &volume,
+                     const std::vector<topology::LabelShape> *shapes = nullptr);
 
     const arbor_branch_tree &record() const { return arrays_.record(); }
     uint32_t size() const { return record().branch_count; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <cstring>
 #include <string>
 
 namespace arbor {
@@ -31,6 +32,17 @@ TransferFunctions::TransferFunctions(uint32_t branches, uint32_t lut_size, doubl
     record_.domain = domain_.data();
     record_.lut = lut_.data();
     record_.point_offsets = offsets_.data();
+    notes_.assign(std::size_t{branches} * kNoteSize, '\0');
+    record_.notes = notes_.data();
+    record_.note_size = kNoteSize;
+}
+
+std::string TransferFunctions::note(uint32_t b) const
+{
+    if (b >= branch_count())
+        return {};
+    const char *n = notes_.data() + std::size_t{b} * kNoteSize;
+    return std::string(n, strnlen(n, kNoteSize - 1));
 }
 
 void TransferFunctions::assign(uint32_t b, std::pair<double, double> domain, const float *rgba)
@@ -67,6 +79,8 @@ std::unique_ptr<TransferFunctions> TransferFunctions::with_optical_depth(const s
         for (uint32_t i = offsets_[b]; i < offsets_[b + 1]; ++i)
             points[i].rgba[3] = thicker(points[i].rgba[3], b < scale.size() ? scale[b] : 1.0);
     out->assign_points(offsets_, std::move(points));
+    out->notes_ = notes_;
+    out->record_.notes = out->notes_.data();
     return out;
 }
 
@@ -120,6 +134,8 @@ void generate_transfer_functions(PluginInstance &generator, const arbor_tf_reque
             if (!(x >= 0.0f && x <= 1.0f) || !std::isfinite(p.value))
                 refuse("a control point outside [0, 1] or at a non-finite value");
     set.points = out.points_.data(); // the task's memory goes with the task
+    for (uint32_t b = 0; b < set.branch_count; ++b)
+        out.notes_[std::size_t{b + 1} * TransferFunctions::kNoteSize - 1] = '\0'; // a note ends in its slot
 }
 
 } // namespace arbor

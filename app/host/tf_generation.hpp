@@ -10,6 +10,7 @@
 #include <arbor/transfer_function.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace arbor {
@@ -32,6 +33,7 @@ private:
 // copied out of the call's task memory).
 class TransferFunctions {
 public:
+    static constexpr uint32_t kNoteSize = 160;
     TransferFunctions(uint32_t branches, uint32_t lut_size, double opacity_unit_distance);
     TransferFunctions(const TransferFunctions &) = delete;
     TransferFunctions &operator=(const TransferFunctions &) = delete;
@@ -43,6 +45,8 @@ public:
     std::pair<double, double> domain(uint32_t b) const { return {domain_[2 * b], domain_[2 * b + 1]}; }
     const std::vector<uint32_t> &point_offsets() const { return offsets_; }
     const std::vector<arbor_tf_point> &points() const { return points_; }
+    // What the generator said about branch b ("" when nothing).
+    std::string note(uint32_t b) const;
 
     // Filling from a file: branch b's domain and lut_size RGBA entries, then
     // the control points of every branch.
@@ -61,6 +65,7 @@ private:
     std::vector<float> lut_;
     std::vector<uint32_t> offsets_;
     std::vector<arbor_tf_point> points_;
+    std::vector<char> notes_;
     arbor_tf_set record_{};
 };
 

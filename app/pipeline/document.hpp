@@ -108,6 +108,9 @@ struct ViewChoice {
 struct Document {
     InputChoice input;
     std::vector<PluginSetting> filters;
+    // With no filters given: denoise when the scan is dominated by noise, as
+    // `arbor denoise-study` would suggest (auto_denoise.hpp).
+    bool auto_denoise = true;
     PluginSetting simplifier;
     CutChoice cut;
     Appearance appearance;

@@ -98,7 +98,7 @@ void Pipeline::update(const Document &resolved)
             revisions_[index_of(g)] = ++revision_counter_;
     };
     bump(Group::Input, resolved.input != document_.input);
-    bump(Group::Filters, resolved.filters != document_.filters);
+    bump(Group::Filters, resolved.filters != document_.filters || resolved.auto_denoise != document_.auto_denoise);
     bump(Group::Simplifier, resolved.simplifier != document_.simplifier);
     bump(Group::Cut, resolved.cut != document_.cut);
     bump(Group::Appearance, resolved.appearance != document_.appearance);

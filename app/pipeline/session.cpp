@@ -231,6 +231,7 @@ std::string session_text(const Document &d, const PluginCatalog &catalog, const 
     j["filters"] = ordered::array();
     for (const PluginSetting &f : d.filters)
         j["filters"].push_back(plugin_json(f, catalog, folder));
+    j["auto_denoise"] = d.auto_denoise;
     j["simplifier"] = plugin_json(d.simplifier, catalog, folder);
     if (d.cut.keep)
         j["cut"] = {{"keep", *d.cut.keep}};
@@ -328,6 +329,11 @@ SessionRead parse_session(const std::string &text, const fs::path &folder, const
             r.fail("filters must be a list");
         for (std::size_t i = 0; i < filters.size(); ++i)
             d.filters.push_back(r.plugin(filters[i], ARBOR_KIND_FILTER, "filters[" + std::to_string(i) + "]"));
+    }
+    if (j.contains("auto_denoise")) {
+        if (!j.at("auto_denoise").is_boolean())
+            r.fail("auto_denoise must be true or false");
+        d.auto_denoise = j.at("auto_denoise").get<bool>();
     }
     d.simplifier = r.plugin(r.member(j, "simplifier", "the session"), ARBOR_KIND_SIMPLIFIER, "simplifier");
 

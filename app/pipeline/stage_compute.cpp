@@ -7,10 +7,12 @@
 #include "host/filter_run.hpp"
 #include "host/simplifier_importance.hpp"
 #include "host/volume_import.hpp"
+#include "topology/label_thickness.hpp"
 #include "io/phantom.hpp"
 
 #include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -76,12 +78,43 @@ std::shared_ptr<const void> filter(StageContext &c)
     auto r = std::make_shared<FilterResult>();
     r->volume = imported->volume;
     r->source = imported->source;
-    for (const PluginSetting &setting : c.document.filters) {
+    std::vector<PluginSetting> chain = c.document.filters;
+    if (chain.empty() && c.document.auto_denoise) {
+        // Denoise only what noise dominates, as strongly as the study's plateau.
+        c.job.report("looking at the noise", 0.0);
+        PluginSetting gaussian;
+        try {
+            gaussian = c.catalog.resolve(ARBOR_KIND_FILTER, {"gaussian", "", {}});
+        } catch (const std::invalid_argument &) {
+            c.job.write(ARBOR_LOG_INFO, "", "no gaussian filter installed: not denoising automatically");
+        }
+        if (!gaussian.empty()) {
+            const auto smooth = [&](const Volume &v, double sigma) {
+                PluginSetting s = gaussian;
+                char text[40];
+                std::snprintf(text, sizeof text, "%.17g", sigma);
+                s.params["sigma"] = text;
+                PluginSlot::Lease f = c.plugins.lease(s, &c.job);
+                return run_filter(*f, v, nullptr, c.options.max_volume_bytes, c.stop());
+            };
+            r->denoise = advise_denoising(*imported->volume, smooth, c.stop());
+            c.job.write(ARBOR_LOG_INFO, "", "automatic denoising: " + r->denoise->describe());
+            if (r->denoise->sigma_mm > 0) {
+                char text[40];
+                std::snprintf(text, sizeof text, "%.17g", r->denoise->sigma_mm);
+                gaussian.params["sigma"] = text;
+                chain.push_back(gaussian);
+            }
+        }
+        c.job.finish();
+    }
+    for (const PluginSetting &setting : chain) {
         throw_if_stopped(c.stop());
         PluginSlot::Lease f = c.plugins.lease(setting, &c.job);
         r->volume = std::make_shared<const Volume>(
             run_filter(*f, *r->volume, &c.job, c.options.max_volume_bytes, c.stop()));
-        r->source += " | " + describe_setting(setting, f->param_descriptions());
+        r->source += " | " + describe_setting(setting, f->param_descriptions()) +
+                     (c.document.filters.empty() ? " (automatic)" : "");
         r->filters.push_back(setting);
     }
     r->background = estimate_background(*r->volume);
@@ -164,17 +197,21 @@ std::shared_ptr<const void> cut(StageContext &c)
     auto r = std::make_shared<CutResult>();
     r->decomposition = d;
     r->requested = c.document.cut;
-    // The background's basins and bumps (wholly at or below its level) are
-    // not structures: never kept, their voxels go to their parents.
-    std::vector<bool> eligible;
+    // Not structures, never kept (their voxels go to their parents): the
+    // background's basins and bumps (wholly at or below its level), and
+    // pairs of equal values (plateaus split by simulation of simplicity:
+    // no contrast at all).
+    std::vector<bool> eligible(d->branches.branches.size(), true);
     const auto &background = c.input<Stage::Filter>()->background;
-    if (background && !r->requested.keep_background) {
-        const auto value = [&](uint32_t node) { return volume.value(tree->tree.node_vertex[node]); };
-        eligible.assign(d->branches.branches.size(), true);
-        for (std::size_t b = 1; b < eligible.size(); ++b) {
-            const topology::Branch &br = d->branches.branches[b];
-            eligible[b] = std::max(value(br.saddle_node), value(br.extremum_node)) > background->level;
-            r->background_branches += !eligible[b];
+    const auto value = [&](uint32_t node) { return volume.value(tree->tree.node_vertex[node]); };
+    for (std::size_t b = 1; b < eligible.size(); ++b) {
+        const topology::Branch &br = d->branches.branches[b];
+        if (br.measures[topology::kPersistence] <= 0) {
+            eligible[b] = false;
+        } else if (background && !r->requested.keep_background &&
+                   std::max(value(br.saddle_node), value(br.extremum_node)) <= background->level) {
+            eligible[b] = false;
+            ++r->background_branches;
         }
     }
     if (r->requested.keep) {
@@ -185,7 +222,12 @@ std::shared_ptr<const void> cut(StageContext &c)
         r->knee = topology::knee_branch_count(d->branches, 6, 48, 50, eligible);
         r->cut = topology::cut_by_count(d->branches, r->knee->keep, eligible);
     }
-    r->tree = std::make_unique<const BranchTreeRecord>(tree->tree, d->branches, r->cut, volume);
+    // The label map comes with the cut: the thickness of each structure,
+    // which generators read, is measured on it.
+    r->labels = std::make_shared<const std::vector<uint32_t>>(topology::label_voxels(tree->tree, d->branches, r->cut));
+    const Geometry &g = volume.geometry();
+    r->shapes = topology::label_shapes(*r->labels, g.dims, g.spacing, static_cast<uint32_t>(r->cut.kept.size()));
+    r->tree = std::make_unique<const BranchTreeRecord>(tree->tree, d->branches, r->cut, volume, &r->shapes);
     r->seconds = watch.lap();
     return r;
 }
@@ -209,8 +251,7 @@ std::shared_ptr<const void> labels(StageContext &c)
     const auto cut = c.input<Stage::Cut>();
     const auto tree = c.input<Stage::ContourTree>();
     Stopwatch watch;
-    auto r = std::make_shared<LabelsResult>();
-    r->labels = topology::label_voxels(tree->tree, cut->decomposition->branches, cut->cut);
+    auto r = std::make_shared<LabelsResult>(cut);
     r->names = kept_label_names(cut->decomposition->branches, cut->cut);
     r->revision = next_revision();
     r->seconds = watch.lap();
@@ -363,9 +404,17 @@ std::shared_ptr<const void> render(StageContext &c)
         auto *memo = std::any_cast<BalanceMemo>(&c.memo);
         if (!memo || memo->tf != tf || memo->labels_revision != labels->revision || memo->renderer != v.renderer) {
             try {
-                const arbor_branch_tree &t = tf->depiction->cut->tree->record();
+                const CutResult &cut = *tf->depiction->cut;
+                const arbor_branch_tree &t = cut.tree->record();
+                BranchLayout layout;
+                layout.parent.assign(t.parent, t.parent + t.branch_count);
+                layout.voxels.assign(t.branch_count, 0.0);
+                for (const uint32_t l : *cut.labels)
+                    layout.voxels[l] += 1;
+                for (const topology::LabelShape &shape : cut.shapes)
+                    layout.sheet.push_back(shape.compactness > 0 && shape.compactness < 0.2);
                 BalanceResult b = balance_visibility(
-                    *tf->functions, std::vector<int32_t>(t.parent, t.parent + t.branch_count), volume.geometry(),
+                    *tf->functions, layout, volume.geometry(),
                     [&](const TransferFunctions &f, const arbor_camera &cam, uint32_t size) {
                         return preview(f, cam, size, size);
                     },

@@ -4,6 +4,7 @@
 // upstream results it points into, so it stays valid on its own.
 #pragma once
 
+#include "auto_denoise.hpp"
 #include "document.hpp"
 #include "framing.hpp"
 #include "stage_graph.hpp"
@@ -15,6 +16,7 @@
 #include "host/rendering.hpp"
 #include "host/tf_generation.hpp"
 #include "topology/importance_knee.hpp"
+#include "topology/label_thickness.hpp"
 #include "topology/simplification.hpp"
 #include "topology/topology_pipeline.hpp"
 
@@ -37,6 +39,7 @@ struct FilterResult {
     std::optional<BackgroundLevel> background; // the values that are background (core/background_level.hpp)
     std::string source;                   // "scan.nrrd | gaussian:sigma=1.5"
     std::vector<PluginSetting> filters;   // as applied
+    std::optional<DenoiseAdvice> denoise; // when the document asked for automatic denoising
     uint64_t revision = 0;                // unique per computed volume (renderers cache on it)
     double seconds = 0.0;
 };
@@ -61,8 +64,11 @@ struct CutResult {
     std::optional<topology::KneeChoice> knee; // set when the count came from the knee
     std::size_t background_branches = 0;      // left out as the background's basins and bumps
     topology::SimplificationCut cut;
-    // The kept branches as the record depictors and generators read; branch
-    // k of it is label k.
+    // Per voxel its kept label, and per label the thickness of its voxels.
+    std::shared_ptr<const std::vector<uint32_t>> labels;
+    std::vector<topology::LabelShape> shapes;
+    // The kept branches as the record depictors and generators read (with
+    // the thickness column); branch k of it is label k.
     std::unique_ptr<const BranchTreeRecord> tree;
     double seconds = 0.0;
 
@@ -72,8 +78,10 @@ struct CutResult {
 };
 
 struct LabelsResult {
-    std::vector<uint32_t> labels;    // per voxel: the kept label
-    std::vector<std::string> names;  // per label: "root", "max-<branch>", "min-<branch>"
+    explicit LabelsResult(std::shared_ptr<const CutResult> from) : cut(std::move(from)), labels(*cut->labels) {}
+    std::shared_ptr<const CutResult> cut;
+    const std::vector<uint32_t> &labels; // per voxel: the kept label (the cut's)
+    std::vector<std::string> names;      // per label: "root", "max-<branch>", "min-<branch>"
     uint64_t revision = 0;
     double seconds = 0.0;
 };

@@ -53,9 +53,10 @@ std::vector<double> shares_of(const std::vector<double> &v)
     return s;
 }
 
-// The shares closest to `s` within the bounds: the root capped, every other
-// branch floored, the rest scaled to keep their ratios and the sum 1.
-std::vector<double> targets_for(const std::vector<double> &s, const BalanceTargets &t)
+// The shares closest to `s` within the bounds: the root and thin sheets
+// capped, every other branch floored, the rest scaled to keep their ratios
+// and the sum 1.
+std::vector<double> targets_for(const std::vector<double> &s, const std::vector<bool> &sheet, const BalanceTargets &t)
 {
     const std::size_t n = s.size();
     std::vector<double> out(s);
@@ -69,11 +70,15 @@ std::vector<double> targets_for(const std::vector<double> &s, const BalanceTarge
             out[0] = std::clamp(out[0], t.root_floor, t.root_cap);
             fixed[0] = changed = true;
         }
-        for (std::size_t b = 1; b < n; ++b)
+        for (std::size_t b = 1; b < n; ++b) {
             if (!fixed[b] && out[b] < floor) {
                 out[b] = floor;
                 fixed[b] = changed = true;
+            } else if (!fixed[b] && b < sheet.size() && sheet[b] && out[b] > t.sheet_cap) {
+                out[b] = t.sheet_cap;
+                fixed[b] = changed = true;
             }
+        }
         double fixed_sum = 0, free_sum = 0;
         for (std::size_t b = 0; b < n; ++b)
             (fixed[b] ? fixed_sum : free_sum) += out[b];
@@ -89,10 +94,11 @@ std::vector<double> targets_for(const std::vector<double> &s, const BalanceTarge
 
 } // namespace
 
-BalanceResult balance_visibility(const TransferFunctions &tf, const std::vector<int32_t> &parent,
-                                 const Geometry &geometry, const PreviewFn &preview, const BalanceTargets &targets,
-                                 std::stop_token stop)
+BalanceResult balance_visibility(const TransferFunctions &tf, const BranchLayout &layout, const Geometry &geometry,
+                                 const PreviewFn &preview, const BalanceTargets &targets, std::stop_token stop)
 {
+    const std::vector<int32_t> &parent = layout.parent;
+    const std::vector<double> &voxels = layout.voxels;
     std::vector<arbor_camera> views;
     for (const auto &[azimuth, elevation] : {std::pair{0.0, 0.0}, {90.0, 0.0}, {0.0, 80.0}}) {
         Orbit o;
@@ -107,9 +113,10 @@ BalanceResult balance_visibility(const TransferFunctions &tf, const std::vector<
     Measure m = measure(tf, views, preview);
     r.shares_before = shares_of(m.visibility);
     std::vector<double> shares = r.shares_before;
+    std::vector<bool> peeled(n, false); // once peeled, never made denser for the picture's sake
     for (int it = 0; it < kIterations; ++it) {
         throw_if_stopped(stop);
-        const std::vector<double> want = targets_for(shares, targets);
+        const std::vector<double> want = targets_for(shares, layout.sheet, targets);
         // Opacity for the picture as a whole: denser everywhere when the
         // content is too faint to read as surfaces (never thinner).
         const double global =
@@ -128,15 +135,21 @@ BalanceResult balance_visibility(const TransferFunctions &tf, const std::vector<
         // Hidden inside others: peel the ancestors of a structure that is
         // still short of its floor though already many times denser.
         std::vector<double> peel(n, 1.0);
+        const double structures = std::accumulate(voxels.begin() + 1, voxels.end(), 0.0);
         for (std::size_t b = 1; b < n; ++b)
-            if (shares[b] < 0.5 * want[b] && r.scale[b] * step[b] > 8.0 * r.scale[0])
-                for (int32_t a = parent[b]; a > 0; a = parent[static_cast<std::size_t>(a)]) // the root keeps its floor
+            if (shares[b] < 0.5 * want[b] && r.scale[b] * step[b] > 8.0 * r.scale[0] &&
+                voxels[b] >= 1e-4 * structures)
+                for (int32_t a = parent[b]; a > 0; a = parent[static_cast<std::size_t>(a)]) { // the root keeps its floor
                     peel[static_cast<std::size_t>(a)] = std::min(peel[static_cast<std::size_t>(a)], 0.6);
+                    peeled[static_cast<std::size_t>(a)] = true;
+                }
         // The root follows its share alone: made denser with the rest it
         // would take the picture back.
+        // A peeled branch is not made denser with the rest, which would undo it.
         for (std::size_t b = 0; b < n; ++b)
             r.scale[b] = std::clamp(
-                r.scale[b] * std::clamp(step[b] * peel[b] * (b == 0 ? 1.0 : global), 1 / kStepLimit, kStepLimit),
+                r.scale[b] *
+                    std::clamp(step[b] * peel[b] * (b == 0 || peeled[b] ? 1.0 : global), 1 / kStepLimit, kStepLimit),
                 1 / kScaleLimit, kScaleLimit);
         if (done)
             break;

@@ -9,13 +9,17 @@
 //   - every kept structure gets at least `floor` of the picture,
 //   - the outermost (the root branch: the body as a whole, its skin) between
 //     `root_floor` and `root_cap`,
+//   - a thin sheet or shell (compactness below 0.2: a fat layer, a skull, a
+//     headrest) at most `sheet_cap`: layers are what one sees through,
 //   - the content, where anything is seen, is opaque enough to read as
 //     surfaces (`coverage` of mean opacity),
 // changing nothing else: shares already within bounds keep their ratios, so
 // what the generator decided (the residue flow's peeling by Q) stays.  A
 // structure that stays hidden however dense it gets lies inside others:
 // then its ancestors in the branch tree (but the root) are thinned, as the
-// residue flow's Q would peel them.
+// residue flow's Q would peel them - unless it is too small to be worth it
+// (under a ten-thousandth of the labelled voxels): a few voxels do not take a
+// hemisphere away.
 //
 // The views are fixed (anterior, left, superior), so the result does not
 // change as the camera orbits; the pipeline computes it once per set of
@@ -36,7 +40,8 @@ struct BalanceTargets {
     double floor = 0.02;    // least share of a kept non-root structure
     double root_floor = 0.12; // least share of the root branch: the body stays in the picture
     double root_cap = 0.35;   // most share of the root branch
-    double coverage = 0.8;  // mean opacity over the pixels where anything is seen
+    double sheet_cap = 0.25;  // most share of a thin sheet or shell
+    double coverage = 0.7;  // mean opacity over the pixels where anything is seen
 };
 
 struct BalanceResult {
@@ -51,9 +56,16 @@ using PreviewFn = std::function<RenderedImage(const TransferFunctions &tf, const
 
 // Throws when the previews measure no visibility (a renderer that does not
 // report it): then there is nothing to balance on.
-// `parent`: per branch its parent in the branch tree (-1 for the root).
-BalanceResult balance_visibility(const TransferFunctions &tf, const std::vector<int32_t> &parent,
-                                 const Geometry &geometry, const PreviewFn &preview, const BalanceTargets &targets = {},
+// Per branch: its parent in the branch tree (-1 for the root), how many
+// voxels it labels, and whether it is a thin sheet or shell.
+struct BranchLayout {
+    std::vector<int32_t> parent;
+    std::vector<double> voxels;
+    std::vector<bool> sheet;
+};
+
+BalanceResult balance_visibility(const TransferFunctions &tf, const BranchLayout &layout, const Geometry &geometry,
+                                 const PreviewFn &preview, const BalanceTargets &targets = {},
                                  std::stop_token stop = {});
 
 } // namespace arbor::pipeline

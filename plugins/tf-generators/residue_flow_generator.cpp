@@ -8,11 +8,13 @@
 #include "branch_colours.hpp"
 #include "opacity_shape.hpp"
 #include "residue_flow.hpp"
+#include "shape_choice.hpp"
 #include "tf_generator_classes.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 namespace arbor::tf {
 
@@ -51,10 +53,14 @@ std::vector<sdk::ParamSpec> residue_flow_params()
     p.push_back(sdk::ParamSpec::real("alpha-range", "Opacity range", 0.9, 0.0, 1.0)
                     .group("Opacity")
                     .hint("What all branches on a path from the root share above the minimum"));
-    p.push_back(sdk::ParamSpec::choice("shape", "Opacity shape", opacity_shape_names(), 0,
-                                       {"ramp towards the extremum", "inverse ramp", "hat", "box",
-                                        "isovalue peak"})
-                    .group("Opacity"));
+    std::vector<std::string> shapes{"auto"};
+    shapes.insert(shapes.end(), opacity_shape_names().begin(), opacity_shape_names().end());
+    p.push_back(sdk::ParamSpec::choice("shape", "Opacity shape", shapes, 0,
+                                       {"chosen per branch from its thickness and values", "ramp towards the extremum",
+                                        "inverse ramp", "hat", "box", "isovalue peak"})
+                    .group("Opacity")
+                    .hint("auto chooses per branch (thin structures a peak or a hat, solid ones a box, ramp or "
+                          "inverse ramp by where their values lie); or one shape for all"));
     p.push_back(sdk::ParamSpec::real("peak-position", "Peak position", 0.5, 0.0, 1.0)
                     .group("Opacity")
                     .hint("Shape peak: where the isovalue lies between saddle (0) and extremum (1)"));
@@ -90,12 +96,14 @@ public:
         flow.alpha_range = params().number("alpha-range");
         if (flow.alpha_min + flow.alpha_range > 1.0)
             sdk::fail(ARBOR_ERROR_OUT_OF_RANGE, "alpha-min + alpha-range must not exceed 1");
-        ShapeSettings shape;
+        ShapeSettings fixed;
         const std::string &name = params().choice("shape");
+        const bool automatic = name == "auto";
         const auto &names = opacity_shape_names();
-        shape.shape = static_cast<OpacityShape>(std::find(names.begin(), names.end(), name) - names.begin());
-        shape.peak_position = params().number("peak-position");
-        shape.peak_width = params().number("peak-width");
+        if (!automatic)
+            fixed.shape = static_cast<OpacityShape>(std::find(names.begin(), names.end(), name) - names.begin());
+        fixed.peak_position = params().number("peak-position");
+        fixed.peak_width = params().number("peak-width");
         ColourSettings colour;
         try {
             colour.hues = HarmonicTemplate::parse(params().text("hues"));
@@ -111,7 +119,7 @@ public:
                                                             : params().number("opacity-unit");
         const std::vector<OpacityRange> ranges = residue_flow(tree, flow);
         const std::vector<BranchColour> colours = branch_colours(tree, colour, request.depiction, cache_);
-        const std::vector<double> corners = shape_corners(shape);
+        const bool notes = ARBOR_HAS_FIELD(arbor_tf_set, out.struct_size, note_size) && out.notes && out.note_size > 1;
         // The background stays clear: opacity fades in from its level over
         // the width of its noise, and branch intervals start above it.
         const bool clear = params().flag("clear-background") &&
@@ -127,8 +135,25 @@ public:
             return u * u * (3 - 2 * u);
         };
         const uint32_t n = tree.size();
-        auto *points = static_cast<arbor_tf_point *>(task.allocate(sizeof(arbor_tf_point) * corners.size() * n));
+        // Per branch its shape (automatic or the one given) and its corners.
+        std::vector<ShapeSettings> shapes(n, fixed);
+        std::vector<std::vector<double>> corners(n);
+        std::size_t total_points = 0;
+        for (uint32_t b = 0; b < n; ++b) {
+            if (automatic) {
+                const ShapeChoice choice = choose_shape(tree, b, request.min_spacing);
+                shapes[b].shape = choice.shape;
+                if (notes)
+                    std::snprintf(out.notes + std::size_t{b} * out.note_size, out.note_size, "%s", choice.why.c_str());
+            }
+            corners[b] = shape_corners(shapes[b]);
+            total_points += corners[b].size();
+        }
+        auto *points = static_cast<arbor_tf_point *>(task.allocate(sizeof(arbor_tf_point) * total_points));
         const arbor_depiction *depiction = request.depiction;
+        out.point_offsets[0] = 0;
+        for (uint32_t b = 0; b < n; ++b)
+            out.point_offsets[b + 1] = out.point_offsets[b] + static_cast<uint32_t>(corners[b].size());
         for (uint32_t b = 0; b < n; ++b) {
             if ((b & 1023) == 0)
                 task.progress(static_cast<double>(b) / n, "transfer functions");
@@ -141,6 +166,7 @@ public:
             const auto t_of = [&](double value) {
                 return extremum != saddle ? (value - saddle) / (extremum - saddle) : 1.0;
             };
+            const ShapeSettings &shape = shapes[b];
             const auto rgba = [&](double t) {
                 double alpha = shape_opacity(shape, t, ranges[b].low, ranges[b].high) *
                                fade(saddle + (extremum - saddle) * t);
@@ -152,18 +178,17 @@ public:
                                             static_cast<float>(alpha)};
             };
             bake_lut(out, b, branch_domain(tree, request, b), [&](double value) { return rgba(t_of(value)); });
-            out.point_offsets[b] = static_cast<uint32_t>(b * corners.size());
-            for (std::size_t i = 0; i < corners.size(); ++i) {
+            const std::vector<double> &c = corners[b];
+            for (std::size_t i = 0; i < c.size(); ++i) {
                 // Points ascend in value: for minima t runs downwards.
-                const double t = saddle <= extremum ? corners[i] : corners[corners.size() - 1 - i];
-                arbor_tf_point &pt = points[b * corners.size() + i];
+                const double t = saddle <= extremum ? c[i] : c[c.size() - 1 - i];
+                arbor_tf_point &pt = points[out.point_offsets[b] + i];
                 pt.value = saddle + (extremum - saddle) * t;
-                const std::array<float, 4> c = rgba(t);
+                const std::array<float, 4> colour = rgba(t);
                 for (int k = 0; k < 4; ++k)
-                    pt.rgba[k] = std::clamp(c[k], 0.0f, 1.0f);
+                    pt.rgba[k] = std::clamp(colour[k], 0.0f, 1.0f);
             }
         }
-        out.point_offsets[n] = static_cast<uint32_t>(n * corners.size());
         out.points = points;
     }
 

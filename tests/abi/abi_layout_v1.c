@@ -207,7 +207,7 @@ _Static_assert(offsetof(arbor_tf_request, value_range) == 32, "offset of arbor_t
 _Static_assert(offsetof(arbor_tf_request, min_spacing) == 48, "offset of arbor_tf_request.min_spacing changed");
 _Static_assert(offsetof(arbor_tf_request, background_level) == 56, "offset of arbor_tf_request.background_level changed");
 _Static_assert(offsetof(arbor_tf_request, background_peak) == 64, "offset of arbor_tf_request.background_peak changed");
-_Static_assert(sizeof(arbor_tf_set) == 56, "size of arbor_tf_set changed");
+_Static_assert(sizeof(arbor_tf_set) == 72, "size of arbor_tf_set changed");
 _Static_assert(_Alignof(arbor_tf_set) == 8, "alignment of arbor_tf_set changed");
 _Static_assert(offsetof(arbor_tf_set, struct_size) == 0, "offset of arbor_tf_set.struct_size changed");
 _Static_assert(offsetof(arbor_tf_set, branch_count) == 4, "offset of arbor_tf_set.branch_count changed");
@@ -218,6 +218,9 @@ _Static_assert(offsetof(arbor_tf_set, domain) == 24, "offset of arbor_tf_set.dom
 _Static_assert(offsetof(arbor_tf_set, lut) == 32, "offset of arbor_tf_set.lut changed");
 _Static_assert(offsetof(arbor_tf_set, point_offsets) == 40, "offset of arbor_tf_set.point_offsets changed");
 _Static_assert(offsetof(arbor_tf_set, points) == 48, "offset of arbor_tf_set.points changed");
+_Static_assert(offsetof(arbor_tf_set, notes) == 56, "offset of arbor_tf_set.notes changed");
+_Static_assert(offsetof(arbor_tf_set, note_size) == 64, "offset of arbor_tf_set.note_size changed");
+_Static_assert(offsetof(arbor_tf_set, reserved1) == 68, "offset of arbor_tf_set.reserved1 changed");
 _Static_assert(sizeof(arbor_version) == 12, "size of arbor_version changed");
 _Static_assert(_Alignof(arbor_version) == 4, "alignment of arbor_version changed");
 _Static_assert(offsetof(arbor_version, major) == 0, "offset of arbor_version.major changed");

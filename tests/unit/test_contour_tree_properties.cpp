@@ -17,6 +17,7 @@
 
 #include "topology/branch_decomposition.hpp"
 #include "topology/contour_tree.hpp"
+#include "topology/critical_points.hpp"
 #include "topology/grid_neighbors.hpp"
 #include "topology/persistence_pairs.hpp"
 #include "topology/simplification.hpp"
@@ -440,6 +441,26 @@ TEST(ContourTreeProperties, ArcInteriorVoxelsCountTheRegularVerticesOfEachArc)
         if (total != t.vertex_arc.size())
             return "nodes and interiors add up to " + std::to_string(total) + " of " +
                    std::to_string(t.vertex_arc.size()) + " voxels";
+        return "";
+    });
+}
+
+// Counting extrema vertex by vertex finds exactly the contour tree's
+// leaves: its minima and maxima.
+TEST(ContourTreeProperties, LocalExtremaAreTheTreesLeaves)
+{
+    for_every_grid([](const Sample &s) -> std::string {
+        const ContourTree &t = s.staged;
+        uint64_t minima = 0, maxima = 0;
+        for (std::size_t x = 0; x < t.node_count(); ++x) {
+            minima += t.node_down[x] == 0;
+            maxima += t.node_up[x] == 0;
+        }
+        const Geometry &g = s.volume.geometry();
+        const ExtremumCount c = count_extrema(s.volume.type(), s.volume.data(), g.dims[0], g.dims[1], g.dims[2]);
+        if (c.minima != minima || c.maxima != maxima)
+            return "counted " + std::to_string(c.minima) + " minima and " + std::to_string(c.maxima) +
+                   " maxima, the tree has " + std::to_string(minima) + " and " + std::to_string(maxima);
         return "";
     });
 }

@@ -67,6 +67,14 @@ typedef struct arbor_tf_set {
     float *lut;                   /* [branch_count * lut_size * 4] straight RGBA */
     uint32_t *point_offsets;      /* [branch_count + 1]: points of branch b are */
     arbor_tf_point *points;       /*   points[point_offsets[b] .. point_offsets[b+1]) */
+    /* Since ABI 1.1 (check ARBOR_HAS_FIELD(arbor_tf_set, struct_size,
+     * note_size)): NULL, or note_size bytes per branch, zero-filled by the
+     * host, where a generator may say in one NUL-terminated UTF-8 line why
+     * a branch's function looks as it does ("hat: a thin shell, 2.1 mm
+     * thick").  Reports show them. */
+    char *notes;
+    uint32_t note_size;
+    uint32_t reserved1;
 } arbor_tf_set;
 
 typedef struct arbor_tf_generator_v1 {

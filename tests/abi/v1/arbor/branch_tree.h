@@ -34,6 +34,17 @@
  * hypervolume).  It is the sum of |f - f(saddle)| unless the region holds pits
  * below a peak's saddle level or bumps above a basin's, which count against it. */
 #define ARBOR_MEASURE_RELATIVE_HYPERVOLUME "relative-hypervolume"
+/* Since ABI 1.1, where the host has the simplified tree's label map: the
+ * thickness, in mm, of the voxels labelled with the branch at the current
+ * cut (its children's excluded): twice their volume over the area of their
+ * boundary with other labels.  A shell (skin, skull) is as thick as the
+ * shell, a ball of radius r 2r/3.  Look the column up by id; it may be
+ * missing. */
+#define ARBOR_MEASURE_THICKNESS "thickness-mm"
+/* Since ABI 1.1, beside the thickness: the thickness over the cube root of
+ * the labelled voxels' volume, about 0.4 for a ball, 0.25 for a long vessel,
+ * below 0.1 for a shell such as the skull. */
+#define ARBOR_MEASURE_COMPACTNESS "compactness"
 
 typedef uint32_t arbor_extremum_kind;
 #define ARBOR_EXTREMUM_MAXIMUM 1u /* the branch rises from its saddle */

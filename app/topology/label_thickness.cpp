@@ -1,0 +1,46 @@
+#include "label_thickness.hpp"
+
+#include <cmath>
+
+namespace arbor::topology {
+
+std::vector<LabelShape> label_shapes(const std::vector<uint32_t> &labels, const std::array<int64_t, 3> &dims,
+                                     const std::array<double, 3> &spacing, uint32_t label_count)
+{
+    const int64_t nx = dims[0], ny = dims[1], nz = dims[2];
+    const double voxel = spacing[0] * spacing[1] * spacing[2];
+    const double face[3] = {spacing[1] * spacing[2], spacing[0] * spacing[2], spacing[0] * spacing[1]};
+    std::vector<double> volume(label_count, 0.0), area(label_count, 0.0);
+    for (int64_t k = 0; k < nz; ++k)
+        for (int64_t j = 0; j < ny; ++j)
+            for (int64_t i = 0; i < nx; ++i) {
+                const std::size_t v = static_cast<std::size_t>(i + nx * (j + ny * k));
+                const uint32_t l = labels[v];
+                volume[l] += voxel;
+                // Each face between two labels, once, for both sides.
+                const auto boundary = [&](std::size_t u, int axis) {
+                    if (labels[u] != l) {
+                        area[l] += face[axis];
+                        area[labels[u]] += face[axis];
+                    }
+                };
+                if (i + 1 < nx)
+                    boundary(v + 1, 0);
+                if (j + 1 < ny)
+                    boundary(v + static_cast<std::size_t>(nx), 1);
+                if (k + 1 < nz)
+                    boundary(v + static_cast<std::size_t>(nx * ny), 2);
+            }
+    constexpr double kStaircase = 1.5; // voxel faces over the smooth surface they approximate
+    std::vector<LabelShape> out(label_count);
+    for (uint32_t l = 0; l < label_count; ++l) {
+        if (volume[l] <= 0)
+            continue;
+        const double size = std::cbrt(volume[l]);
+        out[l].thickness_mm = area[l] > 0 ? kStaircase * 2.0 * volume[l] / area[l] : size;
+        out[l].compactness = out[l].thickness_mm / size;
+    }
+    return out;
+}
+
+} // namespace arbor::topology
