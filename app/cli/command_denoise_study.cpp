@@ -135,6 +135,7 @@ void add_denoise_study_command(CLI::App &app, Context &context)
         if (!d)
             throw std::invalid_argument(filter.id + " has no parameter '" + a->param + "'");
         pipeline::Document doc = pipeline::default_document();
+        doc.auto_denoise = false; // the study's own strengths, strength 0 as it is
         a->input.apply(doc.input, catalog);
         p->set_document(doc);
         const auto imported = p.run<pipeline::Stage::Import>();

@@ -96,6 +96,11 @@ void AppearanceFlags::add_to(CLI::App &command, Context &context)
     lut_option_ = command.add_option("--lut-size", lut_size_, "Entries of each baked lookup table (default 256)")
                       ->check(CLI::Range(2, 65536))
                       ->group("Transfer functions");
+    balance_option_ = command.add_option("--balance", balance_,
+                                         "on: scale each structure's opacity until the picture gives every one its "
+                                         "share (default); off: the generator's opacities as they are")
+                          ->check(CLI::IsMember({"on", "off"}))
+                          ->group("Transfer functions");
     depictor_flags_.add(command, context.registry, ARBOR_KIND_DEPICTOR, "Depictor options");
     generator_flags_.add(command, context.registry, ARBOR_KIND_TF_GENERATOR, "Generator options");
     context.flag_names.add(depictor_flags_);
@@ -149,6 +154,8 @@ void AppearanceFlags::apply(pipeline::Appearance &look, const SweepPoint &point,
         look.generator.params["hues"] = *point.hues;
     if (lut_option_->count())
         look.lut_size = lut_size_;
+    if (balance_option_->count())
+        look.balance_visibility = balance_ == "on";
 }
 
 } // namespace arbor::cli

@@ -66,6 +66,8 @@ private:
     std::string generator_, relation_, flow_rate_, shape_, hues_;
     std::optional<int32_t> select_;
     uint32_t lut_size_ = 256;
+    std::string balance_;
+    CLI::Option *balance_option_ = nullptr;
     CLI::Option *generator_option_ = nullptr, *relation_option_ = nullptr, *lut_option_ = nullptr;
     PluginFlags depictor_flags_, generator_flags_;
 };

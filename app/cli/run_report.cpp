@@ -119,7 +119,9 @@ json run_json(const RunReport &report, const RenderedRun &run, std::vector<std::
     if (cut.knee)
         j["simplification"]["knee_ranks_considered"] = cut.knee->considered;
     const Orbit &o = doc.view.orbit;
-    j["camera"] = {{"azimuth", o.azimuth},        {"elevation", o.elevation},
+    const double azimuth = run.render->viewpoint ? run.render->viewpoint->azimuth : o.azimuth;
+    const double elevation = run.render->viewpoint ? run.render->viewpoint->elevation : o.elevation;
+    j["camera"] = {{"azimuth", azimuth},          {"elevation", elevation},
                    {"zoom", o.zoom},              {"perspective", o.perspective},
                    {"width", doc.view.width},     {"height", doc.view.height}};
     seconds = {{"import", report.import->seconds},
@@ -150,6 +152,11 @@ json run_json(const RunReport &report, const RenderedRun &run, std::vector<std::
         }
         j["balance"] = {{"iterations", balance->iterations}, {"views", {"anterior", "left", "superior"}}};
     }
+    if (const auto &vp = run.render->viewpoint)
+        j["viewpoint"] = {{"azimuth", vp->azimuth},
+                          {"elevation", vp->elevation},
+                          {"score", vp->score},
+                          {"anterior_score", vp->anterior_score}};
     if (const auto &framing = run.render->framing)
         j["framing"] = {{"content_fraction_unframed", framing->content_fraction}, {"scale", framing->scale}};
     j["output"] = {{"image", run.image.string()}, {"covered_fraction", run.coverage}};

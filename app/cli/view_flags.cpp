@@ -28,6 +28,16 @@ void ViewFlags::add_to(CLI::App &command, Context &context)
             ->expected(3, 4)
             ->check(CLI::Range(0.0, 1.0))
             ->group("Rendering");
+    view_option_ = command.add_option("--view", view_,
+                                      "auto: choose azimuth and elevation from the structures (the direction that "
+                                      "shows the important inner ones best); fixed: --azimuth/--elevation (default)")
+                       ->check(CLI::IsMember({"auto", "fixed"}))
+                       ->group("Rendering");
+    framing_option_ = command.add_option("--framing", framing_,
+                                         "content: frame what is visible, 85 % of the shorter side (default); "
+                                         "volume: fit the whole grid")
+                          ->check(CLI::IsMember({"content", "volume"}))
+                          ->group("Rendering");
     flags_.add(command, context.registry, ARBOR_KIND_RENDERER, "Renderer options");
     context.flag_names.add(flags_);
 }
@@ -53,6 +63,10 @@ void ViewFlags::apply(pipeline::ViewChoice &view, const pipeline::PluginCatalog 
         view.orbit.perspective = false;
     if (perspective_)
         view.orbit.perspective = true;
+    if (view_option_->count())
+        view.auto_view = view_ == "auto";
+    if (framing_option_->count())
+        view.frame_content = framing_ == "content";
     if (background_option_->count())
         for (std::size_t c = 0; c < 4; ++c)
             view.background[c] = c < background_.size() ? background_[c] : 1.0;

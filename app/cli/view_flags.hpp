@@ -24,10 +24,11 @@ private:
     uint32_t width_ = 512, height_ = 512;
     double azimuth_ = 0, elevation_ = 0, zoom_ = 1;
     bool orthographic_ = false, perspective_ = false;
+    std::string view_, framing_;
     std::vector<double> background_;
     CLI::Option *renderer_option_ = nullptr, *width_option_ = nullptr, *height_option_ = nullptr,
                 *azimuth_option_ = nullptr, *elevation_option_ = nullptr, *zoom_option_ = nullptr,
-                *background_option_ = nullptr;
+                *background_option_ = nullptr, *view_option_ = nullptr, *framing_option_ = nullptr;
     PluginFlags flags_;
 };
 

@@ -15,7 +15,8 @@ namespace {
 
 constexpr double kNoiseDensity = 0.005; // extrema per voxel above which noise dominates
 constexpr int64_t kBlock = 96;
-constexpr double kStrengths[] = {0.0, 0.5, 1.0, 1.5, 2.0, 3.0}; // in smallest voxel spacings
+constexpr double kStrengths[] = {0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0}; // in smallest voxel spacings
+constexpr double kMostVoxels = 2.0; // beyond, structures a few voxels across melt
 
 // The middle of the volume, at most kBlock voxels a side, with its spacing.
 Volume middle_block(const Volume &v)
@@ -80,7 +81,7 @@ DenoiseAdvice advise_denoising(const Volume &volume, const GaussianFn &gaussian,
         a.study.push_back({s * unit, n});
         counts.push_back(n);
     }
-    a.sigma_mm = a.study[plateau_index(counts)].sigma_mm;
+    a.sigma_mm = std::min(a.study[plateau_index(counts)].sigma_mm, kMostVoxels * unit);
     return a;
 }
 

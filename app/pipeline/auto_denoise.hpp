@@ -4,12 +4,13 @@
 // A scan is dominated by noise when its field has many extrema: more than
 // one voxel in 200 (a smooth scan has a few thousand in millions).  Then the
 // study runs on a block from the middle of the volume (at most 96 voxels a
-// side): Gaussian smoothing at 0, 0.5, 1, 1.5, 2 and 3 times the smallest
-// voxel spacing, the branch count at each from its extrema (no contour tree
-// needed, topology/critical_points.hpp), and the strength chosen is the
+// side): Gaussian smoothing from 0 to 3 times the smallest voxel spacing in
+// steps of a half, the branch count at each from its extrema (no contour
+// tree needed, topology/critical_points.hpp), and the strength chosen is the
 // study's plateau: the first after which a step removes less than a fifth
 // (in log terms) of what the steepest step removed - noise gone, structures
-// not yet melting.
+// not yet melting - but never more than two voxel spacings, beyond which
+// structures a few voxels across (a small tumour) melt.
 #pragma once
 
 #include "core/volume.hpp"

@@ -99,6 +99,9 @@ struct ViewChoice {
     // Frame what is visible (framing.hpp) rather than the grid's box; the
     // orbit's zoom applies on top.
     bool frame_content = true;
+    // Choose the orbit's azimuth and elevation from the structures
+    // (viewpoint.hpp) instead of taking them from `orbit`.
+    bool auto_view = false;
     uint32_t width = 512, height = 512;
     std::array<double, 4> background{0.0, 0.0, 0.0, 1.0};
     PluginSetting renderer;

@@ -251,6 +251,7 @@ std::string session_text(const Document &d, const PluginCatalog &catalog, const 
         a.transfer_functions_file.empty() ? ordered(nullptr) : ordered(stored_path(a.transfer_functions_file, folder));
     look["legend"] = plugin_json(a.legend, catalog, folder);
     look["legend_size"] = a.legend_size;
+    look["balance_visibility"] = a.balance_visibility;
     j["appearance"] = look;
 
     const ViewChoice &v = d.view;
@@ -259,7 +260,9 @@ std::string session_text(const Document &d, const PluginCatalog &catalog, const 
                       {"elevation", v.orbit.elevation},
                       {"zoom", v.orbit.zoom},
                       {"projection", v.orbit.perspective ? "perspective" : "orthographic"},
-                      {"view_angle", v.orbit.view_angle}};
+                      {"view_angle", v.orbit.view_angle},
+                      {"direction", v.auto_view ? "auto" : "fixed"},
+                      {"framing", v.frame_content ? "content" : "volume"}};
     view["image"] = {{"width", v.width}, {"height", v.height}};
     view["background"] = v.background;
     view["renderer"] = plugin_json(v.renderer, catalog, folder);
@@ -379,6 +382,11 @@ SessionRead parse_session(const std::string &text, const fs::path &folder, const
             r.fail("the transfer functions file " + a.transfer_functions_file.string() + " does not exist");
     }
     a.legend = r.optional_plugin(look, "legend", ARBOR_KIND_DEPICTOR, "appearance");
+    if (look.contains("balance_visibility")) {
+        if (!look.at("balance_visibility").is_boolean())
+            r.fail("appearance.balance_visibility must be true or false");
+        a.balance_visibility = look.at("balance_visibility").get<bool>();
+    }
     if (look.contains("legend_size")) {
         const double n = r.number(look.at("legend_size"), "appearance.legend_size");
         if (!(n >= 16 && n <= 8192) || n != static_cast<double>(static_cast<uint32_t>(n)))
@@ -401,6 +409,17 @@ SessionRead parse_session(const std::string &text, const fs::path &folder, const
                 r.fail("view.camera.projection must be \"perspective\" or \"orthographic\", not \"" + p + "\"");
             v.orbit.perspective = p == "perspective";
         }
+        const auto word = [&](const char *key, const char *yes, const char *no, bool &out) {
+            if (!c.contains(key))
+                return;
+            const std::string w = r.text(c.at(key), std::string("view.camera.") + key);
+            if (w != yes && w != no)
+                r.fail(std::string("view.camera.") + key + " must be \"" + yes + "\" or \"" + no + "\", not \"" + w +
+                       "\"");
+            out = w == yes;
+        };
+        word("direction", "auto", "fixed", v.auto_view);
+        word("framing", "content", "volume", v.frame_content);
         if (c.contains("view_angle")) {
             v.orbit.view_angle = r.number(c.at("view_angle"), "view.camera.view_angle");
             if (!(v.orbit.view_angle > 0 && v.orbit.view_angle < 180))

@@ -345,7 +345,10 @@ struct BalanceMemo {
     std::shared_ptr<const TransferFunctionsResult> tf;
     uint64_t labels_revision = 0;
     PluginSetting renderer;
+    bool asked = false;    // for balancing
+    bool balanced = false; // and got it (a renderer that measures no visibility gives none)
     BalanceResult balance;
+    std::optional<ViewpointChoice> viewpoint; // chosen once for these functions
 };
 
 // The user's zoom, on top of the framing: closer, or a smaller view.
@@ -399,10 +402,14 @@ std::shared_ptr<const void> render(StageContext &c)
     };
 
     r->functions = tf->functions;
-    if (c.document.appearance.balance_visibility) {
-        c.job.report("balancing visibility", 0.0);
-        auto *memo = std::any_cast<BalanceMemo>(&c.memo);
-        if (!memo || memo->tf != tf || memo->labels_revision != labels->revision || memo->renderer != v.renderer) {
+    auto *memo = std::any_cast<BalanceMemo>(&c.memo);
+    const bool balance = c.document.appearance.balance_visibility;
+    if (!memo || memo->tf != tf || memo->labels_revision != labels->revision || memo->renderer != v.renderer ||
+        memo->asked != balance) {
+        c.memo = BalanceMemo{tf, labels->revision, v.renderer, balance, balance, {}, std::nullopt};
+        memo = std::any_cast<BalanceMemo>(&c.memo);
+        if (balance) {
+            c.job.report("balancing visibility", 0.0);
             try {
                 const CutResult &cut = *tf->depiction->cut;
                 const arbor_branch_tree &t = cut.tree->record();
@@ -413,28 +420,41 @@ std::shared_ptr<const void> render(StageContext &c)
                     layout.voxels[l] += 1;
                 for (const topology::LabelShape &shape : cut.shapes)
                     layout.sheet.push_back(shape.compactness > 0 && shape.compactness < 0.2);
-                BalanceResult b = balance_visibility(
+                memo->balance = balance_visibility(
                     *tf->functions, layout, volume.geometry(),
                     [&](const TransferFunctions &f, const arbor_camera &cam, uint32_t size) {
                         return preview(f, cam, size, size);
                     },
                     {}, c.stop());
-                c.memo = BalanceMemo{tf, labels->revision, v.renderer, std::move(b)};
             } catch (const std::invalid_argument &e) {
                 c.job.write(ARBOR_LOG_INFO, "", std::string("visibility not balanced: ") + e.what());
-                c.memo.reset();
+                memo->balanced = false;
             }
-            memo = std::any_cast<BalanceMemo>(&c.memo);
         }
-        if (memo) {
-            r->balance = memo->balance;
-            r->functions = tf->functions->with_optical_depth(memo->balance.scale);
-        }
+    }
+    if (memo->balanced) {
+        r->balance = memo->balance;
+        r->functions = tf->functions->with_optical_depth(memo->balance.scale);
     }
     request.transfer_functions = &r->functions->record();
 
     Orbit orbit = v.orbit;
     orbit.zoom = 1.0;
+    if (v.auto_view) {
+        if (!memo->viewpoint) {
+            c.job.report("choosing the view", 0.0);
+            std::vector<double> voxels(tf->functions->branch_count(), 0.0);
+            for (const uint32_t l : labels->labels)
+                voxels[l] += 1;
+            memo->viewpoint = choose_viewpoint(
+                volume.geometry(), voxels,
+                [&](const arbor_camera &cam, uint32_t size) { return preview(*r->functions, cam, size, size); },
+                c.stop());
+        }
+        r->viewpoint = memo->viewpoint;
+        orbit.azimuth = memo->viewpoint->azimuth;
+        orbit.elevation = memo->viewpoint->elevation;
+    }
     arbor_camera camera = orbit_camera(volume.geometry(), orbit);
     if (v.frame_content) {
         c.job.report("framing", 0.0);

@@ -8,6 +8,7 @@
 #include "document.hpp"
 #include "framing.hpp"
 #include "stage_graph.hpp"
+#include "viewpoint.hpp"
 #include "visibility_balance.hpp"
 
 #include "core/background_level.hpp"
@@ -111,6 +112,7 @@ struct RenderResult {
     std::shared_ptr<const TransferFunctions> functions;
     std::optional<BalanceResult> balance;
     std::optional<Framing> framing;
+    std::optional<ViewpointChoice> viewpoint; // when the view was chosen
     double seconds = 0.0;
 };
 
