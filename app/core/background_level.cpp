@@ -14,6 +14,7 @@ constexpr std::size_t kBins = 1024;
 constexpr double kLowPart = 0.4;      // where a background peak may lie
 constexpr double kMinShare = 0.05;    // of the voxels, for a peak to be a background
 constexpr double kTail = 0.05;        // of the peak's count: where its noise ends
+constexpr double kStandOut = 5.0;     // a peak this many times the mean filled bin
 constexpr uint64_t kSamples = 1 << 22; // enough for the histogram of any scan
 
 } // namespace
@@ -55,6 +56,16 @@ std::optional<BackgroundLevel> estimate_background(const Volume &volume)
     const std::size_t low_bins = static_cast<std::size_t>(kLowPart * kBins);
     const std::size_t peak = static_cast<std::size_t>(
         std::max_element(smooth.begin(), smooth.begin() + static_cast<std::ptrdiff_t>(low_bins)) - smooth.begin());
+    // A background is a peak: it stands out of the histogram (a scan
+    // cropped inside the body has a flat or tissue-shaped low end).
+    double filled = 0, bins_filled = 0;
+    for (const double c : smooth)
+        if (c > 0) {
+            filled += c;
+            bins_filled += 1;
+        }
+    if (smooth[peak] < kStandOut * filled / bins_filled)
+        return std::nullopt;
     // Down the peak's tail; a second peak as full within the low part (air
     // inside the field of view above the padding outside it) is background too.
     std::size_t end = peak;
@@ -71,7 +82,7 @@ std::optional<BackgroundLevel> estimate_background(const Volume &volume)
     double below = 0;
     for (std::size_t b = 0; b <= end; ++b)
         below += bins[b];
-    if (below < kMinShare * total)
+    if (below < kMinShare * total || end >= low_bins)
         return std::nullopt;
     const auto value_of = [&](std::size_t b) { return lo + (hi - lo) * (static_cast<double>(b) + 0.5) / kBins; };
     BackgroundLevel out;

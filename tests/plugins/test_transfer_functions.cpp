@@ -122,6 +122,66 @@ TEST(TransferFunctions, InnerBranchesAreMoreOpaqueAndOpacityStaysInRange)
         }
 }
 
+// --shape auto: a thin shell gets a hat (or, a voxel thick, an isovalue
+// peak), a solid plateau a box, a solid peaked structure a ramp, a bulk with
+// a spike an inverse ramp; the root a ramp; each says why in its note.
+TEST(TransferFunctions, AutomaticShapesFollowThicknessAndWhereTheValuesLie)
+{
+    test::BranchTreeBuilder builder({-1, 0, 1, 1, 1, 1});
+    for (uint32_t b = 1; b < 6; ++b)
+        builder.set(b, 10.0 * b, 10.0 * b + 20, false, 0.2, 0.1, 0.1);
+    builder.set_shape(0, 30, 0.5);
+    builder.set_shape(1, 2.5, 0.05); // a shell 2.5 voxels thick
+    builder.set_shape(2, 1.0, 0.03); // a sheet a voxel thick
+    builder.set_shape(3, 8, 0.4);    // solid ...
+    builder.set_shape(4, 8, 0.4);
+    builder.set_shape(5, 8, 0.4);
+    builder.set_absolute(3, 20, 100, 0.8 * 20 * 100); // ... its values near the extremum
+    builder.set_absolute(4, 20, 100, 0.4 * 20 * 100); // ... spread
+    builder.set_absolute(5, 20, 100, 0.1 * 20 * 100); // ... near the saddle
+    const arbor_branch_tree &tree = builder.record();
+    PluginInstance g = create("org.arbor.tf.residue-flow");
+    TransferFunctions tf(tree.branch_count, kLut, 1.0);
+    generate_transfer_functions(g, request_for(tree), tf);
+    const char *want[] = {"ramp:", "hat:", "peak:", "box:", "ramp:", "inverse ramp:"};
+    for (uint32_t b = 0; b < 6; ++b)
+        EXPECT_EQ(tf.note(b).rfind(want[b], 0), 0u) << "branch " << b << ": " << tf.note(b);
+    // The box is flat over its interval, the inverse ramp falls towards its extremum.
+    EXPECT_NEAR(alpha_at(tf, 3, 31), alpha_at(tf, 3, 49), 1e-3);
+    EXPECT_GT(alpha_at(tf, 5, 52), alpha_at(tf, 5, 68));
+    // Without the host's columns every branch but the root is solid.
+    test::BranchTreeBuilder plain = hand_tree();
+    TransferFunctions tf2(plain.record().branch_count, kLut, 1.0);
+    generate_transfer_functions(g, request_for(plain.record()), tf2);
+    EXPECT_EQ(tf2.note(0).rfind("ramp:", 0), 0u);
+    for (uint32_t b = 1; b < plain.record().branch_count; ++b)
+        EXPECT_EQ(tf2.note(b).find("thin"), std::string::npos) << tf2.note(b);
+}
+
+// The background the host found stays transparent: every branch's opacity
+// is 0 at or below its level and fades in over its noise's width.
+TEST(TransferFunctions, TheBackgroundStaysClear)
+{
+    test::BranchTreeBuilder builder = hand_tree();
+    const arbor_branch_tree &tree = builder.record();
+    PluginInstance g = create("org.arbor.tf.residue-flow");
+    set_text(g, "shape", "box");
+    arbor_tf_request r = request_for(tree);
+    r.background_peak = 2;
+    r.background_level = 12;
+    TransferFunctions tf(tree.branch_count, kLut, 1.0);
+    generate_transfer_functions(g, r, tf);
+    EXPECT_EQ(alpha_at(tf, 0, 5), 0.0f);
+    EXPECT_EQ(alpha_at(tf, 0, 10), 0.0f); // (a lookup-table step below the level)
+    EXPECT_GT(alpha_at(tf, 0, 30), 0.0f);
+    EXPECT_LT(alpha_at(tf, 0, 16), alpha_at(tf, 0, 30)); // fading in
+    // Switched off, the root's box starts at its saddle again.
+    set_text(g, "clear-background", "false");
+    TransferFunctions off(tree.branch_count, kLut, 1.0);
+    generate_transfer_functions(g, r, off);
+    EXPECT_GT(alpha_at(off, 0, 5), 0.0f);
+}
+
 TEST(TransferFunctions, InclusionDepictionKeepsInnerBranchesMoreOpaque)
 {
     test::BranchTreeBuilder builder = hand_tree();

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <array>
+#include <map>
 #include <random>
 #include <vector>
 
@@ -61,14 +63,37 @@ public:
         std::copy(row, row + BranchTreeArrays::kMeasureCount, a_.relative.begin() + BranchTreeArrays::kMeasureCount * b);
     }
 
+    // The host's label-geometry columns (thickness in mm, compactness).
+    void set_shape(uint32_t b, double thickness_mm, double compactness)
+    {
+        if (a_.extra_ids.empty()) {
+            a_.extra_ids = {ARBOR_MEASURE_THICKNESS, ARBOR_MEASURE_COMPACTNESS};
+            a_.extra.assign(2, std::vector<double>(a_.parent.size(), 0.0));
+        }
+        a_.extra[0][b] = thickness_mm;
+        a_.extra[1][b] = compactness;
+    }
+    // Absolute measures, when they should differ from the relative ones:
+    // persistence, volume and relative hypervolume (shape choice reads them).
+    void set_absolute(uint32_t b, double p, double v, double rhv)
+    {
+        absolute_[b] = {p, v, rhv};
+    }
+
     const arbor_branch_tree &record()
     {
         a_.measures = a_.relative;
+        for (const auto &[b, m] : absolute_) {
+            a_.measures[BranchTreeArrays::kMeasureCount * b + 0] = m[0];
+            a_.measures[BranchTreeArrays::kMeasureCount * b + 1] = m[1];
+            a_.measures[BranchTreeArrays::kMeasureCount * b + 4] = m[2];
+        }
         return a_.link();
     }
 
 private:
     BranchTreeArrays a_;
+    std::map<uint32_t, std::array<double, 3>> absolute_;
 };
 
 } // namespace arbor::test
