@@ -115,7 +115,9 @@ json run_json(const RunReport &report, const RenderedRun &run, std::vector<std::
                            {"automatic", cut.knee.has_value()},
                            {"contour_tree_nodes", report.tree->tree.node_count()},
                            {"branches_before", d.branches.branches.size()},
-                           {"branches_after", cut.kept()}};
+                           {"branches_after", cut.kept()},
+                           {"background_branches_left_out", cut.background_branches},
+                           {"specks_left_out", cut.speck_branches}};
     if (cut.knee)
         j["simplification"]["knee_ranks_considered"] = cut.knee->considered;
     const Orbit &o = doc.view.orbit;

@@ -214,6 +214,17 @@ std::shared_ptr<const void> cut(StageContext &c)
             ++r->background_branches;
         }
     }
+    // The knee chooses among structures big enough to be seen: a region of
+    // fewer voxels than a 3x3x3 block is a speck (a partial-volume bump, a
+    // noise pit), a pixel or two of any picture.  An explicit count or
+    // threshold takes what it asks for.
+    constexpr double kSpeck = 27;
+    if (!r->requested.keep && !r->requested.threshold)
+        for (std::size_t b = 1; b < eligible.size(); ++b)
+            if (eligible[b] && d->branches.branches[b].measures[topology::kVolume] < kSpeck) {
+                eligible[b] = false;
+                ++r->speck_branches;
+            }
     if (r->requested.keep) {
         r->cut = topology::cut_by_count(d->branches, *r->requested.keep, eligible);
     } else if (r->requested.threshold) {

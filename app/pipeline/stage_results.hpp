@@ -64,6 +64,7 @@ struct CutResult {
     CutChoice requested;
     std::optional<topology::KneeChoice> knee; // set when the count came from the knee
     std::size_t background_branches = 0;      // left out as the background's basins and bumps
+    std::size_t speck_branches = 0;           // left out of the knee's choice as too small to be seen
     topology::SimplificationCut cut;
     // Per voxel its kept label, and per label the thickness of its voxels.
     std::shared_ptr<const std::vector<uint32_t>> labels;

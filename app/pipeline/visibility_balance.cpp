@@ -12,7 +12,7 @@ namespace arbor::pipeline {
 namespace {
 
 constexpr uint32_t kPreview = 64;
-constexpr int kIterations = 6;
+constexpr int kIterations = 8;
 constexpr double kStepLimit = 6.0;   // a multiplier changes at most by this factor per iteration
 constexpr double kScaleLimit = 200.0; // nor beyond this, either way, in all
 constexpr double kSeen = 0.02;        // a pixel's opacity above which something is seen there
@@ -149,7 +149,8 @@ BalanceResult balance_visibility(const TransferFunctions &tf, const BranchLayout
         for (std::size_t b = 0; b < n; ++b)
             r.scale[b] = std::clamp(
                 r.scale[b] *
-                    std::clamp(step[b] * peel[b] * (b == 0 || peeled[b] ? 1.0 : global), 1 / kStepLimit, kStepLimit),
+                    std::clamp(step[b] * peel[b] * (b == 0 || peeled[b] || shares[b] > want[b] ? 1.0 : global),
+                               1 / kStepLimit, kStepLimit),
                 1 / kScaleLimit, kScaleLimit);
         if (done)
             break;

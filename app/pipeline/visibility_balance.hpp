@@ -12,7 +12,9 @@
 //   - a thin sheet or shell (compactness below 0.2: a fat layer, a skull, a
 //     headrest) at most `sheet_cap`: layers are what one sees through,
 //   - the content, where anything is seen, is opaque enough to read as
-//     surfaces (`coverage` of mean opacity),
+//     surfaces (`coverage` of mean opacity; made denser for that are only
+//     the structures not already above their share, so coverage never
+//     undoes a floor),
 // changing nothing else: shares already within bounds keep their ratios, so
 // what the generator decided (the residue flow's peeling by Q) stays.  A
 // structure that stays hidden however dense it gets lies inside others:

@@ -52,6 +52,8 @@ class DefaultImage(unittest.TestCase):
         self.assertAlmostEqual(content_fraction(SCRATCH / "phantom.png"), 0.85, delta=0.07)
         # Balance: the root and the kept structures within their bounds.
         self.assertLessEqual(shares[0], 0.40)
+        for b in r["branches"][1:]:
+            self.assertGreaterEqual(b["visibility"], 0.01, b)
         by_place = lambda centre: [b for b in r["branches"] if near(b, centre, 10)]
         tumour, ventricle = by_place(TUMOUR), by_place(VENTRICLE)
         self.assertTrue(tumour and ventricle, "the tumour and the ventricle are kept")
@@ -97,12 +99,27 @@ class DefaultImage(unittest.TestCase):
         for b in r["branches"][1:]:
             self.assertGreater(b["hu_range"][1], -900, b)  # no basin of the air is a structure
         self.assertLessEqual(r["branches"][0]["visibility"], 0.40)
+        for b in r["branches"][1:]:
+            self.assertGreaterEqual(b["visibility"], 0.01, b)
         bone = [b for b in r["branches"] if b["hu_range"][0] >= 300]
         self.assertTrue(bone)
         top3 = sorted(r["branches"], key=lambda b: -b["visibility"])[:3]
         self.assertTrue(any(b in bone for b in top3), "a bone branch is among the three most visible")
         self.assertIn("HU range", out)
         self.assertIn("bone", out)
+
+    def test_a_real_mr_gives_every_structure_its_share(self):
+        # Colin27: a brain MR with a dozen kept structures, several of them
+        # thin and nested (cortex, ventricles): none is lost, none takes over.
+        r, _, _ = run("mr", DATA / "mr_brain_colin27/ch2.nii.gz", "--width", 128, "--height", 128)
+        shares = [b["visibility"] for b in r["branches"]]
+        self.assertGreater(len(shares), 5)
+        self.assertAlmostEqual(sum(shares), 1.0, places=6)
+        self.assertLessEqual(shares[0], 0.40)
+        for b in r["branches"][1:]:
+            self.assertGreaterEqual(b["visibility"], 0.01, b)
+        self.assertLess(max(shares), 0.5)
+        self.assertAlmostEqual(content_fraction(SCRATCH / "mr.png"), 0.85, delta=0.08)
 
 
 if __name__ == "__main__":

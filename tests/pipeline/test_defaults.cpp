@@ -1,12 +1,14 @@
 // The pieces the default image stands on, on volumes made to know the
 // answer: the background level of a histogram, the thickness and
 // compactness of labelled structures, the extrema count on a known field,
-// the denoising study's plateau, CT tissue names, and framing.
+// the denoising study's plateau, CT tissue names, framing, and the
+// balancing of visibility against a renderer whose answer is known.
 #include "core/background_level.hpp"
 #include "core/ct_tissue.hpp"
 #include "core/volume.hpp"
 #include "pipeline/auto_denoise.hpp"
 #include "pipeline/framing.hpp"
+#include "pipeline/visibility_balance.hpp"
 #include "topology/critical_points.hpp"
 #include "topology/label_thickness.hpp"
 
@@ -190,6 +192,115 @@ TEST(Framing, ContentOffCentreEndsUpCentredAndFilling)
     // Nothing seen, nothing framed.
     std::fill(preview.rgba.begin(), preview.rgba.end(), 0.0f);
     EXPECT_FALSE(pipeline::frame_content(c, preview, 100, 100));
+}
+
+// A renderer one can work out by hand: every ray crosses the body (the
+// root, one layer), then, on its share of the pixels, the layers of the
+// structures in front-to-back order; each layer's opacity is its transfer
+// function's densest alpha.  Structure 1 is a big slab over 60 % of the
+// pixels, 2 a small solid inside it (4 %, behind 1), 3 a thin sheet in front
+// of everything (30 %), 4 a small solid on 2 % of the pixels alone.
+struct LayeredScene {
+    struct Layer {
+        uint32_t branch;
+        double x0, x1; // the pixel columns it covers, as fractions of the width
+    };
+    std::vector<Layer> layers{{3, 0.0, 0.3}, {1, 0.2, 0.8}, {2, 0.4, 0.44}, {4, 0.9, 0.92}};
+    int renders = 0;
+
+    RenderedImage operator()(const TransferFunctions &tf, uint32_t size)
+    {
+        ++renders;
+        const auto alpha = [&](uint32_t b) {
+            float a = 0;
+            for (uint32_t e = 0; e < tf.lut_size(); ++e)
+                a = std::max(a, tf.lut(b)[4 * e + 3]);
+            return static_cast<double>(a);
+        };
+        RenderedImage im;
+        im.width = im.height = size;
+        im.rgba.assign(std::size_t{size} * size * 4, 0.0f);
+        im.label_visibility.assign(tf.branch_count(), 0.0);
+        for (uint32_t x = 0; x < size; ++x) {
+            const double at = (x + 0.5) / size;
+            double t = 1.0;
+            const auto cross = [&](uint32_t b) {
+                im.label_visibility[b] += size * t * alpha(b); // a column of `size` rays
+                t *= 1 - alpha(b);
+            };
+            cross(0);
+            for (const Layer &l : layers)
+                if (at >= l.x0 && at < l.x1)
+                    cross(l.branch);
+            for (uint32_t y = 0; y < size; ++y)
+                im.rgba[(std::size_t{y} * size + x) * 4 + 3] = static_cast<float>(1 - t);
+        }
+        return im;
+    }
+};
+
+TEST(VisibilityBalance, EveryStructureGetsItsShareAndTheBodyItsBounds)
+{
+    // Transfer functions as a residue flow might leave them: the body dense,
+    // the inner solid and the speck faint.
+    const std::vector<float> densest = {0.5f, 0.3f, 0.02f, 0.4f, 0.01f};
+    TransferFunctions tf(5, 2, 1.0);
+    for (uint32_t b = 0; b < 5; ++b) {
+        const float rgba[8] = {1, 1, 1, 0, 1, 1, 1, densest[b]};
+        tf.assign(b, {0.0, 1.0}, rgba);
+    }
+    pipeline::BranchLayout layout;
+    layout.parent = {-1, 0, 1, 0, 0};
+    layout.voxels = {1e6, 6e4, 4e3, 3e4, 1e3};
+    layout.sheet = {false, false, false, true, false};
+    LayeredScene scene;
+    Geometry g;
+    g.dims = {32, 32, 32};
+    const pipeline::BalanceTargets targets;
+    const auto r = pipeline::balance_visibility(
+        tf, layout, g, [&](const TransferFunctions &f, const arbor_camera &, uint32_t size) { return scene(f, size); },
+        targets);
+    ASSERT_EQ(r.shares_after.size(), 5u);
+    EXPECT_LT(r.shares_before[2], 0.01); // hidden behind the slab and faint
+    EXPECT_GT(r.shares_before[0], targets.root_cap); // the body takes the picture
+    double sum = 0;
+    for (const double s : r.shares_after)
+        sum += s;
+    EXPECT_NEAR(sum, 1.0, 1e-9);
+    // Every structure at its floor (within the iterations' tolerance), the
+    // body within its bounds, the sheet under its cap.
+    for (uint32_t b = 1; b < 5; ++b)
+        EXPECT_GE(r.shares_after[b], 0.8 * targets.floor) << "structure " << b;
+    EXPECT_GE(r.shares_after[0], 0.8 * targets.root_floor);
+    EXPECT_LE(r.shares_after[0], 1.1 * targets.root_cap);
+    EXPECT_LE(r.shares_after[3], 1.1 * targets.sheet_cap);
+    // What was already in bounds is not pushed out of them: the faint inner
+    // solid was made denser, not the slab in front of it.
+    EXPECT_GT(r.scale[2], r.scale[1]);
+    for (const double s : r.scale) {
+        EXPECT_TRUE(std::isfinite(s));
+        EXPECT_GT(s, 0);
+    }
+    EXPECT_GE(scene.renders, 3); // three views per measurement
+}
+
+TEST(VisibilityBalance, ARendererThatMeasuresNothingIsRefused)
+{
+    TransferFunctions tf(2, 2, 1.0);
+    const float rgba[8] = {1, 1, 1, 0, 1, 1, 1, 0.5f};
+    tf.assign(0, {0.0, 1.0}, rgba);
+    tf.assign(1, {0.0, 1.0}, rgba);
+    pipeline::BranchLayout layout{{-1, 0}, {10, 10}, {false, false}};
+    Geometry g;
+    g.dims = {8, 8, 8};
+    EXPECT_THROW(pipeline::balance_visibility(tf, layout, g,
+                                              [](const TransferFunctions &, const arbor_camera &, uint32_t size) {
+                                                  RenderedImage im;
+                                                  im.width = im.height = size;
+                                                  im.rgba.assign(std::size_t{size} * size * 4, 0.0f);
+                                                  return im;
+                                              }),
+                 std::invalid_argument);
 }
 
 } // namespace
