@@ -3,52 +3,136 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace arbor {
 
-RenderedImage render_image(PluginInstance &renderer, const arbor_render_request &request, uint32_t width,
-                           uint32_t height, ProgressSink *progress, std::stop_token stop)
+namespace {
+
+void check_region(const PluginInstance &renderer, RenderedImage &frame, const Region &r, std::size_t labels)
 {
-    const auto &table = renderer.interface<arbor_renderer_v1>(ARBOR_INTERFACE_RENDERER);
+    for (uint32_t y = r.y; y < r.y + r.height; ++y) {
+        const float *row = frame.rgba.data() + (std::size_t{y} * frame.width + r.x) * 4;
+        for (std::size_t i = 0; i < std::size_t{r.width} * 4; ++i)
+            if (!(row[i] >= 0.0f && row[i] <= 1.0f))
+                throw PluginError(ARBOR_ERROR_OUT_OF_RANGE, renderer.id() + " wrote a pixel value outside [0, 1]");
+    }
+    std::vector<double> &v = frame.label_visibility;
+    const auto measured = [](double x) { return !std::isnan(x); };
+    if (std::none_of(v.begin(), v.end(), measured)) {
+        v.clear();
+        return;
+    }
+    // A ray's contributions sum to its opacity, at most 1: the total is at
+    // most the number of pixels.
+    double total = 0;
+    for (double x : v) {
+        if (!(x >= 0.0) || !std::isfinite(x))
+            throw PluginError(ARBOR_ERROR_OUT_OF_RANGE,
+                              renderer.id() + " measured a visibility that is not a finite number >= 0 (or "
+                                              "left some labels unmeasured)");
+        total += x;
+    }
+    if (v.size() != labels || total > 1.0001 * static_cast<double>(r.width) * r.height)
+        throw PluginError(ARBOR_ERROR_OUT_OF_RANGE,
+                          renderer.id() + " measured more visibility than the image's pixels can hold");
+}
+
+} // namespace
+
+bool renders_passes(const PluginInstance &renderer)
+{
+    return renderer.get()->get_interface(renderer.get(), ARBOR_INTERFACE_RENDERER_2) != nullptr;
+}
+
+void render_region(PluginInstance &renderer, const arbor_render_request &request, RenderedImage &frame,
+                   Region region, const FramePass &pass, ProgressSink *progress, std::stop_token stop)
+{
+    if (region.width == 0 || region.height == 0)
+        region = {0, 0, frame.width, frame.height};
+    if (region.x >= frame.width || region.y >= frame.height || region.width > frame.width - region.x ||
+        region.height > frame.height - region.y)
+        throw std::invalid_argument("the region to render lies outside the frame");
+    const std::size_t labels = request.transfer_functions->branch_count;
+    // NaN: "not measured"; a renderer that measures visibility overwrites all.
+    frame.label_visibility.assign(labels, std::numeric_limits<double>::quiet_NaN());
+    Task task(progress, std::move(stop));
+    if (renders_passes(renderer)) {
+        const auto &table = renderer.interface<arbor_renderer_v2>(ARBOR_INTERFACE_RENDERER_2);
+        arbor_render_request_v2 r{};
+        r.struct_size = sizeof r;
+        r.pass = pass.pass;
+        r.volume = request.volume;
+        r.labels = request.labels;
+        r.transfer_functions = request.transfer_functions;
+        r.camera = request.camera;
+        std::copy(std::begin(request.background), std::end(request.background), r.background);
+        r.volume_revision = request.volume_revision;
+        r.labels_revision = request.labels_revision;
+        r.transfer_functions_revision = pass.transfer_functions_revision;
+        r.frame_width = frame.width;
+        r.frame_height = frame.height;
+        r.region_x = region.x;
+        r.region_y = region.y;
+        r.region_width = region.width;
+        r.region_height = region.height;
+        r.sample_index = pass.pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? pass.sample_index : 0;
+        arbor_image out{};
+        out.struct_size = sizeof out;
+        out.width = region.width;
+        out.height = region.height;
+        out.row_stride = 4 * static_cast<int64_t>(frame.width);
+        out.rgba = frame.rgba.data() + (std::size_t{region.y} * frame.width + region.x) * 4;
+        out.depth = frame.depth.empty() ? nullptr : frame.depth.data() + std::size_t{region.y} * frame.width + region.x;
+        out.depth_stride = frame.width;
+        out.label_visibility = frame.label_visibility.data();
+        out.label_visibility_count = static_cast<uint32_t>(labels);
+        renderer.check(table.render(renderer.get(), &r, &out, task.get()), "rendering");
+    } else {
+        if (pass.pass == ARBOR_RENDER_PASS_SUPERSAMPLE)
+            throw PluginError(ARBOR_ERROR_UNSUPPORTED, renderer.id() + " offers arbor.renderer/1 only: no supersampling");
+        const auto &table = renderer.interface<arbor_renderer_v1>(ARBOR_INTERFACE_RENDERER);
+        const bool whole = region.x == 0 && region.y == 0 && region.width == frame.width && region.height == frame.height;
+        RenderedImage scratch;
+        RenderedImage &target = whole ? frame : scratch;
+        if (!whole) {
+            scratch.width = frame.width;
+            scratch.height = frame.height;
+            scratch.rgba.assign(frame.rgba.size(), 0.0f);
+            scratch.depth.assign(frame.depth.size(), std::numeric_limits<float>::infinity());
+        }
+        arbor_image out{};
+        out.struct_size = sizeof out;
+        out.width = frame.width;
+        out.height = frame.height;
+        out.row_stride = 4 * static_cast<int64_t>(frame.width);
+        out.rgba = target.rgba.data();
+        out.depth = target.depth.empty() ? nullptr : target.depth.data();
+        out.label_visibility = frame.label_visibility.data();
+        out.label_visibility_count = static_cast<uint32_t>(labels);
+        renderer.check(table.render(renderer.get(), &request, &out, task.get()), "rendering");
+        if (!whole)
+            for (uint32_t y = region.y; y < region.y + region.height; ++y) {
+                const std::size_t at = std::size_t{y} * frame.width + region.x;
+                std::copy_n(scratch.rgba.begin() + static_cast<std::ptrdiff_t>(at * 4), std::size_t{region.width} * 4,
+                            frame.rgba.begin() + static_cast<std::ptrdiff_t>(at * 4));
+                if (!frame.depth.empty())
+                    std::copy_n(scratch.depth.begin() + static_cast<std::ptrdiff_t>(at), region.width,
+                                frame.depth.begin() + static_cast<std::ptrdiff_t>(at));
+            }
+    }
+    check_region(renderer, frame, region, labels);
+}
+
+RenderedImage render_image(PluginInstance &renderer, const arbor_render_request &request, uint32_t width,
+                           uint32_t height, ProgressSink *progress, std::stop_token stop, const FramePass &pass)
+{
     RenderedImage image;
     image.width = width;
     image.height = height;
     image.rgba.assign(std::size_t{width} * height * 4, 0.0f);
     image.depth.assign(std::size_t{width} * height, std::numeric_limits<float>::infinity());
-    arbor_image out{};
-    out.struct_size = sizeof out;
-    out.width = width;
-    out.height = height;
-    out.row_stride = 4 * static_cast<int64_t>(width);
-    out.rgba = image.rgba.data();
-    out.depth = image.depth.data();
-    // NaN: "not measured"; a renderer that measures visibility overwrites all.
-    image.label_visibility.assign(request.transfer_functions->branch_count, std::numeric_limits<double>::quiet_NaN());
-    out.label_visibility = image.label_visibility.data();
-    out.label_visibility_count = static_cast<uint32_t>(image.label_visibility.size());
-    Task task(progress, std::move(stop));
-    renderer.check(table.render(renderer.get(), &request, &out, task.get()), "rendering");
-    for (float x : image.rgba)
-        if (!(x >= 0.0f && x <= 1.0f))
-            throw PluginError(ARBOR_ERROR_OUT_OF_RANGE, renderer.id() + " wrote a pixel value outside [0, 1]");
-    const auto measured = [](double v) { return !std::isnan(v); };
-    if (std::none_of(image.label_visibility.begin(), image.label_visibility.end(), measured)) {
-        image.label_visibility.clear();
-    } else {
-        // A ray's contributions sum to its opacity, at most 1: the total is
-        // at most the number of pixels.
-        double total = 0;
-        for (double v : image.label_visibility) {
-            if (!(v >= 0.0) || !std::isfinite(v))
-                throw PluginError(ARBOR_ERROR_OUT_OF_RANGE,
-                                  renderer.id() + " measured a visibility that is not a finite number >= 0 (or "
-                                                  "left some labels unmeasured)");
-            total += v;
-        }
-        if (total > 1.0001 * static_cast<double>(width) * height)
-            throw PluginError(ARBOR_ERROR_OUT_OF_RANGE,
-                              renderer.id() + " measured more visibility than the image's pixels can hold");
-    }
+    render_region(renderer, request, image, {}, pass, progress, std::move(stop));
     return image;
 }
 

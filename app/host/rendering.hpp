@@ -12,8 +12,34 @@
 
 namespace arbor {
 
+// Which pass of which frame: a renderer offering arbor.renderer/2 gets
+// them as they are; one offering /1 alone renders FULL for COARSE, whole
+// frames (the host copies the region out), and cannot SUPERSAMPLE.
+struct FramePass {
+    arbor_render_pass pass = ARBOR_RENDER_PASS_FULL;
+    uint32_t sample_index = 0;                // SUPERSAMPLE: 1, 2, ...
+    uint64_t transfer_functions_revision = 0; // 0: unknown (the renderer compares contents)
+};
+
+struct Region {
+    uint32_t x = 0, y = 0, width = 0, height = 0; // width 0: the whole frame
+};
+
+// The whole frame, in one call.
 RenderedImage render_image(PluginInstance &renderer, const arbor_render_request &request, uint32_t width,
-                           uint32_t height, ProgressSink *progress = nullptr, std::stop_token stop = {});
+                           uint32_t height, ProgressSink *progress = nullptr, std::stop_token stop = {},
+                           const FramePass &pass = {});
+
+// A region of `frame` (allocated by the caller: width x height, rgba and
+// depth), rendered in place; frame.label_visibility becomes the region's.
+// For SUPERSAMPLE the region must hold the previous pass.  Cancelled:
+// throws, and each pixel of the region is as it was or final.
+void render_region(PluginInstance &renderer, const arbor_render_request &request, RenderedImage &frame,
+                   Region region, const FramePass &pass, ProgressSink *progress = nullptr, std::stop_token stop = {});
+
+// Whether the renderer offers arbor.renderer/2 (tiles, coarse and
+// supersample passes).
+bool renders_passes(const PluginInstance &renderer);
 
 // A camera orbiting the volume's centre.  Azimuth 0, elevation 0 looks at
 // the patient's face (from anterior, superior up); azimuth turns towards the

@@ -120,52 +120,35 @@ void AmbientOcclusion::build(const VoxelGrid &g, const ClassTable &table, const 
         occlusion_[c] = static_cast<uint8_t>(std::lround(255.0 * (1.0 - std::exp(-12.0 * density[c]))));
 }
 
-void Occupancy::build(const VoxelGrid &g, const ClassTable &table)
+void Occupancy::build(const BlockStatistics &blocks, const ClassTable &table, const std::array<int64_t, 3> &dims)
 {
-    bx_ = (g.nx + kBlock - 1) / kBlock;
-    by_ = (g.ny + kBlock - 1) / kBlock;
-    bz_ = (g.nz + kBlock - 1) / kBlock;
-    empty_.assign(static_cast<std::size_t>(bx_ * by_ * bz_), 0);
+    bx_ = blocks.bx();
+    by_ = blocks.by();
+    bz_ = blocks.bz();
+    empty_.assign(blocks.count(), 0);
     constexpr float kTransparent = 1.0f / 1024.0f;
-    std::vector<uint32_t> labels;
     int64_t lo_block[3] = {bx_, by_, bz_}, hi_block[3] = {-1, -1, -1};
     for (int64_t bk = 0; bk < bz_; ++bk)
         for (int64_t bj = 0; bj < by_; ++bj)
             for (int64_t bi = 0; bi < bx_; ++bi) {
-                // The block's voxels plus a one-voxel apron: everything a
-                // trilinear sample inside the block reads.
-                float lo = INFINITY, hi = -INFINITY;
-                labels.clear();
-                bool many = false;
-                for (int64_t k = std::max<int64_t>(bk * kBlock - 1, 0); k <= std::min((bk + 1) * kBlock, g.nz - 1); ++k)
-                    for (int64_t j = std::max<int64_t>(bj * kBlock - 1, 0); j <= std::min((bj + 1) * kBlock, g.ny - 1); ++j)
-                        for (int64_t i = std::max<int64_t>(bi * kBlock - 1, 0); i <= std::min((bi + 1) * kBlock, g.nx - 1);
-                             ++i) {
-                            const std::size_t v = g.index(i, j, k);
-                            lo = std::min(lo, g.value[v]);
-                            hi = std::max(hi, g.value[v]);
-                            const uint32_t l = g.label.empty() ? 0u : g.label[v];
-                            if (!many && std::find(labels.begin(), labels.end(), l) == labels.end()) {
-                                labels.push_back(l);
-                                many = labels.size() > 16;
-                            }
-                        }
-                bool empty = !many;
-                for (std::size_t n = 0; empty && n < labels.size(); ++n)
-                    empty = table.max_alpha(labels[n], lo, hi) < kTransparent;
-                empty_[static_cast<std::size_t>(bi + bx_ * (bj + by_ * bk))] = empty ? 1 : 0;
+                const std::size_t b = static_cast<std::size_t>(bi + bx_ * (bj + by_ * bk));
+                bool empty = !blocks.many(b);
+                const uint32_t *labels = blocks.labels(b);
+                for (uint32_t n = 0; empty && n < blocks.label_count(b); ++n)
+                    empty = labels[n] >= table.labels() ||
+                            table.max_alpha(labels[n], blocks.low(b), blocks.high(b)) < kTransparent;
+                empty_[b] = empty ? 1 : 0;
                 if (!empty) {
-                    const int64_t b[3] = {bi, bj, bk};
+                    const int64_t at[3] = {bi, bj, bk};
                     for (int a = 0; a < 3; ++a) {
-                        lo_block[a] = std::min(lo_block[a], b[a]);
-                        hi_block[a] = std::max(hi_block[a], b[a]);
+                        lo_block[a] = std::min(lo_block[a], at[a]);
+                        hi_block[a] = std::max(hi_block[a], at[a]);
                     }
                 }
             }
-    const int64_t n[3] = {g.nx, g.ny, g.nz};
     for (int a = 0; a < 3; ++a) {
         low_[a] = static_cast<double>(std::max<int64_t>(lo_block[a] * kBlock - 1, 0));
-        high_[a] = static_cast<double>(std::min<int64_t>((hi_block[a] + 1) * kBlock, n[a] - 1));
+        high_[a] = static_cast<double>(std::min<int64_t>((hi_block[a] + 1) * kBlock, dims[a] - 1));
     }
 }
 

@@ -5,6 +5,7 @@
 // rays jump over them.
 #pragma once
 
+#include "block_statistics.hpp"
 #include "voxel_grid.hpp"
 
 #include <arbor/transfer_function.h>
@@ -79,8 +80,9 @@ private:
 
 class Occupancy {
 public:
-    static constexpr int64_t kBlock = 8; // the ray caster divides by it with >> 3
-    void build(const VoxelGrid &g, const ClassTable &table);
+    static constexpr int64_t kBlock = BlockStatistics::kBlock; // the ray caster divides by it with >> 3
+    // O(blocks): from the value range and labels of each block.
+    void build(const BlockStatistics &blocks, const ClassTable &table, const std::array<int64_t, 3> &dims);
     // True when every sample within block (bi, bj, bk) is transparent.
     bool empty(int64_t bi, int64_t bj, int64_t bk) const { return empty_[static_cast<std::size_t>(bi + bx_ * (bj + by_ * bk))]; }
     // Voxel-index box around every non-empty block (lo > hi when all are

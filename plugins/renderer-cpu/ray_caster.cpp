@@ -4,20 +4,30 @@
 // values in different structures get different colours); opacity corrected
 // for the sample distance; Blinn-Phong shading with a headlight from
 // per-voxel gradient directions; early ray termination; empty-space
-// skipping over 8^3 blocks; rows spread over all cores.
+// skipping over 8^3 blocks.  arbor.renderer/2: regions of a frame, a
+// coarse pass (a ray per 4x4 pixels, interpolated, at twice the step) for
+// interaction, supersampling while idle; tiles of rows on a persistent
+// oneTBB pool, cancellable within a tile.  What a new set of transfer
+// functions costs is O(blocks) (block statistics are built per volume and
+// labels revision) plus the boundary-emphasis reference (a sample of
+// voxels).
+#include "cancellation.hpp"
 #include "classification.hpp"
 #include "voxel_grid.hpp"
 
 #include <arbor/sdk/renderer.hpp>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
 #include <cstring>
-#include <exception>
 #include <limits>
-#include <mutex>
+#include <memory>
 #include <thread>
 
 namespace arbor::raycast {
@@ -33,7 +43,8 @@ const arbor_plugin_descriptor kRayCasterDescriptor = {
     "1.0.0",
     "Arbor",
     "Emission-absorption ray casting on all CPU cores with label-aware post-classification, Blinn-Phong "
-    "shading, early ray termination and empty-space skipping.",
+    "shading, early ray termination and empty-space skipping; tiles, a coarse pass and supersampling for "
+    "interaction (arbor.renderer/2).",
     "",
 };
 
@@ -60,10 +71,12 @@ public:
         half_ = c.projection == ARBOR_PROJECTION_PERSPECTIVE ? std::tan(c.view_angle * M_PI / 360.0) : c.parallel_scale;
     }
 
-    Ray ray(uint32_t x, uint32_t y) const
+    // The ray through frame position (px, py) in pixels: pixel (x, y)
+    // spans [x, x + 1) x [y, y + 1), its centre is (x + 0.5, y + 0.5).
+    Ray ray(double px, double py) const
     {
-        const double sx = (2.0 * (x + 0.5) / width_ - 1.0) * aspect_ * half_;
-        const double sy = (1.0 - 2.0 * (y + 0.5) / height_) * half_;
+        const double sx = (2.0 * px / width_ - 1.0) * aspect_ * half_;
+        const double sy = (1.0 - 2.0 * py / height_) * half_;
         const Vec3 p{c_.position[0], c_.position[1], c_.position[2]};
         if (c_.projection == ARBOR_PROJECTION_PERSPECTIVE)
             return {p, normalize({f_[0] + sx * r_[0] + sy * u_[0], f_[1] + sx * r_[1] + sy * u_[1],
@@ -118,6 +131,33 @@ uint64_t fingerprint(const arbor_tf_set &tf, double step)
     return h;
 }
 
+// One ray's result.
+struct Sample {
+    float rgba[4];
+    float depth;
+};
+
+// Where the passes put their rays.
+constexpr uint32_t kCoarse = 4;        // a coarse ray per kCoarse x kCoarse pixels
+constexpr double kCoarseStep = 2.0;    // at this many times the full step
+constexpr uint32_t kRows = 8;          // rows per tile of work
+
+// The R2 sequence (Roberts): well spread offsets within a pixel for the
+// supersample passes.
+std::array<double, 2> subpixel(uint32_t n)
+{
+    constexpr double g = 1.32471795724474602596, a1 = 1.0 / g, a2 = 1.0 / (g * g);
+    return {std::fmod(0.5 + a1 * n, 1.0), std::fmod(0.5 + a2 * n, 1.0)};
+}
+
+// Per worker of the arena: what its rays contributed to each label.
+using Slots = std::vector<std::vector<double>>;
+std::vector<double> &slot(Slots &slots)
+{
+    const int i = tbb::this_task_arena::current_thread_index();
+    return slots[static_cast<std::size_t>(i >= 0 ? i : 0) % slots.size()];
+}
+
 class RayCaster final : public sdk::Renderer {
 public:
     explicit RayCaster(const arbor_host *host)
@@ -144,98 +184,250 @@ public:
                         .hint("Offset each ray's first sample by a per-pixel fraction of a step: noise instead "
                               "of wood-grain rings"),
                     sdk::ParamSpec::integer("threads", "Threads", 0, 0, 256)
-                        .hint("Worker threads; 0 uses every core")})
+                        .hint("Worker threads; 0 uses every core")},
+                   Interface::v2)
     {
     }
 
-    void render(const arbor_render_request &request, arbor_image &out, const sdk::Task &task) override
+    void render_region(const arbor_render_request_v2 &request, arbor_image &out, const sdk::Task &task) override
     {
-        const VoxelGrid &g = grid_.update(request, task);
-        const arbor_tf_set &tf = *request.transfer_functions;
-        if (g.max_label >= tf.branch_count)
-            sdk::fail(ARBOR_ERROR_INVALID_ARGUMENT, "label " + std::to_string(g.max_label) +
-                                                        " has no transfer function (" +
-                                                        std::to_string(tf.branch_count) + " given)");
-        const double step = params().number("sample-distance") * g.min_spacing;
-        const uint64_t print = fingerprint(tf, step) ^ (request.labels_revision * 0x9E3779B97F4A7C15ull) ^
-                               reinterpret_cast<uintptr_t>(g.label.data());
-        const double emphasis = params().number("boundary-emphasis");
-        const float occlusion = static_cast<float>(params().number("ambient-occlusion"));
-        if (print != table_print_ || request.volume_revision != table_volume_ || emphasis != emphasis_) {
-            table_.build(tf, step);
-            occupancy_.build(g, table_);
-            boundaries_.build(g, table_, emphasis);
-            occlusion_.clear();
-            table_print_ = print;
-            table_volume_ = request.volume_revision;
-            emphasis_ = emphasis;
-        }
-        if (occlusion > 0 && !occlusion_.built())
-            occlusion_.build(g, table_, boundaries_);
-        shading_occlusion_ = occlusion_.built() ? occlusion : 0.0f;
+        const VoxelGrid &g = prepare(request, task);
         Shading shading;
         shading.enabled = params().flag("shading");
         shading.ambient = static_cast<float>(params().number("ambient"));
         shading.diffuse = static_cast<float>(params().number("diffuse"));
         shading.tabulate(static_cast<float>(params().number("specular")), static_cast<float>(params().number("shininess")));
-        const float termination = static_cast<float>(params().number("termination"));
-        const bool jitter = params().flag("jitter");
-        const Camera camera(*request.camera, out.width, out.height);
+        Pass pass;
+        pass.grid = &g;
+        pass.shading = &shading;
+        pass.camera = std::make_unique<Camera>(*request.camera, request.frame_width, request.frame_height);
+        pass.termination = static_cast<float>(params().number("termination"));
+        pass.jitter = params().flag("jitter");
+        pass.background = request.background;
+        pass.coarse = request.pass == ARBOR_RENDER_PASS_COARSE;
+        pass.step = step_ * (pass.coarse ? kCoarseStep : 1.0);
+        pass.table = pass.coarse ? &coarse_table_ : &table_;
+        pass.sample_index = request.pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? request.sample_index : 0;
 
         const unsigned threads = params().integer("threads") > 0 ? static_cast<unsigned>(params().integer("threads"))
                                                                  : std::max(1u, std::thread::hardware_concurrency());
-        constexpr uint32_t kRows = 8;
-        const uint32_t tiles = (out.height + kRows - 1) / kRows;
-        std::atomic<uint32_t> next{0}, done{0};
-        std::atomic<bool> stop{false};
-        std::exception_ptr error;
-        std::mutex error_mutex;
-        // Visibility per label, summed per worker, then merged.
-        std::vector<double> visibility(table_.labels(), 0.0);
-        const auto work = [&] {
-            std::vector<double> mine(table_.labels(), 0.0);
-            try {
-                for (uint32_t t; !stop && (t = next++) < tiles;) {
-                    for (uint32_t y = t * kRows; y < std::min(out.height, (t + 1) * kRows); ++y)
-                        for (uint32_t x = 0; x < out.width; ++x)
-                            cast(g, camera, shading, termination, step, jitter, request.background, x, y, out,
-                                 mine.data());
-                    const uint32_t d = ++done;
-                    if (task.cancelled())
-                        stop = true;
-                    else if ((d & 7) == 0)
-                        task.progress(static_cast<double>(d) / tiles, "ray casting");
-                }
-            } catch (...) {
-                std::lock_guard lock(error_mutex);
-                error = std::current_exception();
-                stop = true;
-            }
-            std::lock_guard lock(error_mutex);
-            for (std::size_t l = 0; l < mine.size(); ++l)
-                visibility[l] += mine[l];
-        };
-        std::vector<std::thread> pool;
-        for (unsigned i = 1; i < threads; ++i)
-            pool.emplace_back(work);
-        work();
-        for (std::thread &t : pool)
-            t.join();
-        if (error)
-            std::rethrow_exception(error);
+        if (!arena_ || arena_threads_ != threads) {
+            arena_ = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
+            arena_threads_ = threads;
+        }
+        // Visibility per worker slot of the arena, allocated here: the pool's
+        // threads allocate nothing.
+        Slots visibility(static_cast<std::size_t>(arena_->max_concurrency()),
+                         std::vector<double>(table_.labels(), 0.0));
+        Cancellation cancel(task);
+        arena_->execute([&] {
+            if (pass.coarse)
+                render_coarse(pass, request, out, cancel, visibility);
+            else
+                render_pixels(pass, request, out, cancel, visibility);
+        });
         task.throw_if_cancelled();
-        if (ARBOR_HAS_FIELD(arbor_image, out.struct_size, label_visibility_count) && out.label_visibility)
+        if (ARBOR_HAS_FIELD(arbor_image, out.struct_size, label_visibility_count) && out.label_visibility) {
+            std::vector<double> sum(table_.labels(), 0.0);
+            for (const std::vector<double> &v : visibility)
+                for (std::size_t l = 0; l < v.size(); ++l)
+                    sum[l] += v[l];
             for (uint32_t l = 0; l < out.label_visibility_count; ++l)
-                out.label_visibility[l] = l < visibility.size() ? visibility[l] : 0.0;
+                out.label_visibility[l] = l < sum.size() ? sum[l] : 0.0;
+        }
     }
 
 private:
-    // `visibility`: per label, what this ray's samples of it contribute (T * alpha) is added.
-    void cast(const VoxelGrid &g, const Camera &camera, const Shading &shading, float termination, double step,
-              bool jitter, const float *background, uint32_t x, uint32_t y, arbor_image &out,
-              double *visibility) const
+    struct Pass {
+        const VoxelGrid *grid = nullptr;
+        const Shading *shading = nullptr;
+        const ClassTable *table = nullptr;
+        std::unique_ptr<Camera> camera;
+        float termination = 0.99f;
+        bool jitter = true, coarse = false;
+        double step = 1.0;
+        const float *background = nullptr;
+        uint32_t sample_index = 0; // supersampling: which offset within the pixel
+    };
+
+    // Brings every derived structure up to date with the request: the grid
+    // (volume, labels), the block statistics, then what the transfer
+    // functions decide (tables, empty blocks, boundary emphasis, occlusion).
+    const VoxelGrid &prepare(const arbor_render_request_v2 &request, const sdk::Task &task)
     {
-        const Ray ray = camera.ray(x, y);
+        const VoxelGrid &g =
+            grid_.update(*request.volume, request.volume_revision, request.labels, request.labels_revision, task);
+        const arbor_tf_set &tf = *request.transfer_functions;
+        if (g.max_label >= tf.branch_count)
+            sdk::fail(ARBOR_ERROR_INVALID_ARGUMENT, "label " + std::to_string(g.max_label) +
+                                                        " has no transfer function (" +
+                                                        std::to_string(tf.branch_count) + " given)");
+        const bool grid_changed = grid_.generation() != blocks_generation_;
+        if (grid_changed) {
+            blocks_generation_ = ~uint64_t{0};
+            blocks_.build(g, task);
+            blocks_generation_ = grid_.generation();
+        }
+        const double step = params().number("sample-distance") * g.min_spacing;
+        const double emphasis = params().number("boundary-emphasis");
+        // The transfer functions' identity: their revision, or their bytes
+        // when the host does not know it.
+        const uint64_t print = request.transfer_functions_revision != 0
+                                   ? request.transfer_functions_revision * 0x9E3779B97F4A7C15ull
+                                   : fingerprint(tf, step) | 1;
+        if (grid_changed || print != table_print_ || step != step_ || emphasis != emphasis_) {
+            table_print_ = 0;
+            table_.build(tf, step);
+            coarse_table_.build(tf, step * kCoarseStep);
+            occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz});
+            boundaries_.build(g, table_, emphasis);
+            occlusion_.clear();
+            table_print_ = print;
+            step_ = step;
+            emphasis_ = emphasis;
+        }
+        const float occlusion = static_cast<float>(params().number("ambient-occlusion"));
+        if (occlusion > 0 && !occlusion_.built())
+            occlusion_.build(g, table_, boundaries_);
+        shading_occlusion_ = occlusion_.built() ? occlusion : 0.0f;
+        return g;
+    }
+
+    // FULL and SUPERSAMPLE: a ray per pixel, each pixel written once, when
+    // its ray is done (so a cancelled call leaves old or final pixels).
+    void render_pixels(const Pass &pass, const arbor_render_request_v2 &request, arbor_image &out,
+                       Cancellation &cancel, Slots &visibility) const
+    {
+        const uint32_t tiles = (out.height + kRows - 1) / kRows;
+        const int64_t depth_stride = depth_stride_of(out);
+        std::atomic<uint32_t> done{0};
+        const std::array<double, 2> offset = pass.sample_index ? subpixel(pass.sample_index) : std::array{0.5, 0.5};
+        const float blend = pass.sample_index ? 1.0f / static_cast<float>(pass.sample_index + 1) : 1.0f;
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, tiles, 1), [&](const tbb::blocked_range<uint32_t> &r) {
+            std::vector<double> &mine = slot(visibility);
+            for (uint32_t t = r.begin(); t != r.end(); ++t) {
+                for (uint32_t y = t * kRows; y < std::min(out.height, (t + 1) * kRows); ++y) {
+                    if (cancel.stopped())
+                        return;
+                    for (uint32_t x = 0; x < out.width; ++x) {
+                        const uint32_t fx = request.region_x + x, fy = request.region_y + y;
+                        const Sample s = cast(pass, fx + offset[0], fy + offset[1], ray_offset(pass, fx, fy),
+                                              mine.data());
+                        float *px = out.rgba + static_cast<int64_t>(y) * out.row_stride + 4 * static_cast<int64_t>(x);
+                        if (pass.sample_index) {
+                            for (int c = 0; c < 4; ++c)
+                                px[c] += blend * (s.rgba[c] - px[c]);
+                        } else {
+                            std::memcpy(px, s.rgba, sizeof s.rgba);
+                            if (out.depth)
+                                out.depth[static_cast<int64_t>(y) * depth_stride + x] = s.depth;
+                        }
+                    }
+                }
+                const uint32_t d = ++done;
+                if ((d & 7) == 0)
+                    cancel.progress(static_cast<double>(d) / tiles, "ray casting");
+            }
+        });
+    }
+
+    // COARSE: a ray per kCoarse x kCoarse block of the frame (at the
+    // block's centre, so tiles agree), each pixel bilinear between the four
+    // rays around it.  The rays are cast first; the pixels are written only
+    // when all are done.
+    void render_coarse(const Pass &pass, const arbor_render_request_v2 &request, arbor_image &out,
+                       Cancellation &cancel, Slots &visibility) const
+    {
+        const double f = kCoarse;
+        const int64_t columns = (request.frame_width + kCoarse - 1) / kCoarse,
+                      rows = (request.frame_height + kCoarse - 1) / kCoarse;
+        // The ray lattice position of frame pixel centre p: (p - f / 2) / f.
+        const auto lattice = [&](double p, int64_t n) { return std::clamp((p - f / 2) / f, 0.0, double(n - 1)); };
+        const int64_t m0 = static_cast<int64_t>(lattice(request.region_x + 0.5, columns)),
+                      m1 = std::min<int64_t>(columns - 1,
+                                             static_cast<int64_t>(lattice(request.region_x + out.width - 0.5, columns)) + 1),
+                      n0 = static_cast<int64_t>(lattice(request.region_y + 0.5, rows)),
+                      n1 = std::min<int64_t>(rows - 1,
+                                             static_cast<int64_t>(lattice(request.region_y + out.height - 0.5, rows)) + 1);
+        const int64_t w = m1 - m0 + 1, h = n1 - n0 + 1;
+        std::vector<Sample> rays(static_cast<std::size_t>(w * h));
+        // Each coarse ray stands for kCoarse^2 pixels of the frame; the
+        // visibility is scaled to the region's pixels below.
+        Slots raw(visibility.size(), std::vector<double>(table_.labels(), 0.0));
+        tbb::parallel_for(tbb::blocked_range<int64_t>(0, h, 2), [&](const tbb::blocked_range<int64_t> &r) {
+            std::vector<double> &mine = slot(raw);
+            for (int64_t n = r.begin(); n != r.end(); ++n) {
+                if (cancel.stopped())
+                    return;
+                for (int64_t m = 0; m < w; ++m) {
+                    const double px = (m0 + m) * f + f / 2, py = (n0 + n) * f + f / 2;
+                    rays[static_cast<std::size_t>(n * w + m)] =
+                        cast(pass, px, py, ray_offset(pass, static_cast<uint32_t>(px), static_cast<uint32_t>(py)),
+                             mine.data());
+                }
+            }
+        });
+        if (cancel.stopped())
+            return;
+        const double per_ray = static_cast<double>(out.width) * out.height / static_cast<double>(w * h);
+        for (const std::vector<double> &v : raw)
+            for (std::size_t l = 0; l < v.size(); ++l)
+                visibility[0][l] += per_ray * v[l];
+        const int64_t depth_stride = depth_stride_of(out);
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, out.height, kRows), [&](const tbb::blocked_range<uint32_t> &r) {
+            for (uint32_t y = r.begin(); y != r.end(); ++y) {
+                const double v = lattice(request.region_y + y + 0.5, rows) - static_cast<double>(n0);
+                const int64_t b = std::min<int64_t>(static_cast<int64_t>(v), h - 1), b1 = std::min<int64_t>(b + 1, h - 1);
+                const float fy = static_cast<float>(v - static_cast<double>(b));
+                float *row = out.rgba + static_cast<int64_t>(y) * out.row_stride;
+                for (uint32_t x = 0; x < out.width; ++x) {
+                    const double u = lattice(request.region_x + x + 0.5, columns) - static_cast<double>(m0);
+                    const int64_t a = std::min<int64_t>(static_cast<int64_t>(u), w - 1), a1 = std::min<int64_t>(a + 1, w - 1);
+                    const float fx = static_cast<float>(u - static_cast<double>(a));
+                    const Sample &s00 = rays[static_cast<std::size_t>(b * w + a)], &s10 = rays[static_cast<std::size_t>(b * w + a1)],
+                                 &s01 = rays[static_cast<std::size_t>(b1 * w + a)], &s11 = rays[static_cast<std::size_t>(b1 * w + a1)];
+                    for (int c = 0; c < 4; ++c) {
+                        const float top = s00.rgba[c] + fx * (s10.rgba[c] - s00.rgba[c]);
+                        const float bottom = s01.rgba[c] + fx * (s11.rgba[c] - s01.rgba[c]);
+                        row[4 * x + c] = std::clamp(top + fy * (bottom - top), 0.0f, 1.0f);
+                    }
+                    if (out.depth) // the nearest ray's depth: depths do not interpolate across edges
+                        out.depth[static_cast<int64_t>(y) * depth_stride + x] =
+                            (fy < 0.5f ? (fx < 0.5f ? s00 : s10) : (fx < 0.5f ? s01 : s11)).depth;
+                }
+            }
+        });
+    }
+
+    static int64_t depth_stride_of(const arbor_image &out)
+    {
+        return ARBOR_HAS_FIELD(arbor_image, out.struct_size, depth_stride) && out.depth_stride > 0
+                   ? out.depth_stride
+                   : static_cast<int64_t>(out.width);
+    }
+
+    // The fraction of a step the ray of frame pixel (x, y) starts at: fixed
+    // per pixel (noise, not rings), moved on by each supersample.
+    static double ray_offset(const Pass &pass, uint32_t x, uint32_t y)
+    {
+        if (!pass.jitter)
+            return 0.0;
+        const double h = pixel_hash(x, y);
+        return pass.sample_index ? std::fmod(h + 0.61803398874989485 * pass.sample_index, 1.0) : h;
+    }
+
+    // The ray through frame position (px, py), its first sample `offset` of
+    // a step past the lattice.  `visibility`: per label, what this ray's
+    // samples of it contribute (T * alpha) is added.
+    Sample cast(const Pass &pass, double px_frame, double py_frame, double offset_fraction, double *visibility) const
+    {
+        const VoxelGrid &g = *pass.grid;
+        const Shading &shading = *pass.shading;
+        const ClassTable &table = *pass.table;
+        const float termination = pass.termination;
+        const double step = pass.step;
+        const float *background = pass.background;
+        const Ray ray = pass.camera->ray(px_frame, py_frame);
         // The ray in voxel index space, clipped to the box of voxel centres.
         const Vec3 o = mul(g.to_voxel, {ray.origin[0] - g.origin[0], ray.origin[1] - g.origin[1],
                                         ray.origin[2] - g.origin[2]});
@@ -261,7 +453,7 @@ private:
                                 static_cast<float>(-ray.direction[2])};
         // Start on the global sample lattice, so images do not shimmer as the
         // box is clipped, shifted by a fixed per-pixel fraction of a step.
-        const double offset = jitter ? pixel_hash(x, y) * step : 0.0;
+        const double offset = offset_fraction * step;
         double t = std::ceil((t0 - offset) / step) * step + offset;
         const int64_t last_i = std::max<int64_t>(g.nx - 2, 0), last_j = std::max<int64_t>(g.ny - 2, 0),
                       last_k = std::max<int64_t>(g.nz - 2, 0);
@@ -283,7 +475,7 @@ private:
                     ? g.index(i + (fx >= 0.5f && g.nx > 1), j + (fy >= 0.5f && g.ny > 1), k + (fz >= 0.5f && g.nz > 1))
                     : 0;
             const uint32_t label = labelled ? g.label[nearest] : 0u;
-            const float *c = table_.lookup(label, value);
+            const float *c = table.lookup(label, value);
             if (c[3] > 0.0f) {
                 const float m = boundaries_.active() ? boundaries_.factor(g.gradient[nearest]) : 1.0f;
                 const float alpha = c[3] * m;
@@ -314,13 +506,13 @@ private:
             }
             t += step;
         }
-        float *px = out.rgba + static_cast<int64_t>(y) * out.row_stride + 4 * static_cast<int64_t>(x);
+        Sample out;
         const float rest = 1.0f - acc[3];
         for (int ch = 0; ch < 3; ++ch)
-            px[ch] = std::min(1.0f, acc[ch] + rest * background[ch] * background[3]);
-        px[3] = std::min(1.0f, acc[3] + rest * background[3]);
-        if (out.depth)
-            out.depth[static_cast<std::size_t>(y) * out.width + x] = depth;
+            out.rgba[ch] = std::min(1.0f, acc[ch] + rest * background[ch] * background[3]);
+        out.rgba[3] = std::min(1.0f, acc[3] + rest * background[3]);
+        out.depth = depth;
+        return out;
     }
 
     // A fixed pseudo-random number in [0, 1) per pixel (integer hash).
@@ -362,13 +554,17 @@ private:
     }
 
     VoxelGridCache grid_;
-    ClassTable table_;
+    BlockStatistics blocks_;
+    uint64_t blocks_generation_ = ~uint64_t{0};
+    ClassTable table_, coarse_table_;
     Occupancy occupancy_;
     BoundaryEmphasis boundaries_;
     AmbientOcclusion occlusion_;
     float shading_occlusion_ = 0.0f;
-    uint64_t table_print_ = 0, table_volume_ = ~uint64_t{0};
-    double emphasis_ = -1.0;
+    uint64_t table_print_ = 0;
+    double step_ = -1.0, emphasis_ = -1.0;
+    std::unique_ptr<tbb::task_arena> arena_; // the pool the tiles run on (oneTBB's threads persist)
+    unsigned arena_threads_ = 0;
 };
 
 } // namespace

@@ -1,6 +1,10 @@
 #include "voxel_grid.hpp"
+#include "cancellation.hpp"
 
 #include <arbor/sdk/error.hpp>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,18 +14,32 @@ namespace arbor::raycast {
 
 namespace {
 
+// Slabs of k on all cores; a cancelled task stops the slabs not yet begun.
+template <class Body> void for_slabs(int64_t nz, const sdk::Task &task, const Body &body)
+{
+    Cancellation cancel(task);
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, nz), [&](const tbb::blocked_range<int64_t> &ks) {
+        if (cancel.stopped())
+            return;
+        for (int64_t k = ks.begin(); k != ks.end(); ++k)
+            body(k);
+    });
+    task.throw_if_cancelled();
+}
+
 template <class T>
-void copy_values(const arbor_volume &v, std::vector<float> &out)
+void copy_values(const arbor_volume &v, std::vector<float> &out, const sdk::Task &task)
 {
     const char *base = static_cast<const char *>(v.voxels);
-    std::size_t at = 0;
-    for (int64_t k = 0; k < v.dims[2]; ++k)
+    for_slabs(v.dims[2], task, [&](int64_t k) {
+        std::size_t at = static_cast<std::size_t>(k * v.dims[0] * v.dims[1]);
         for (int64_t j = 0; j < v.dims[1]; ++j)
             for (int64_t i = 0; i < v.dims[0]; ++i) {
                 T x;
                 std::memcpy(&x, base + i * v.strides[0] + j * v.strides[1] + k * v.strides[2], sizeof x);
                 out[at++] = static_cast<float>(x);
             }
+    });
 }
 
 Mat3 inverse(const Mat3 &m)
@@ -48,9 +66,7 @@ void compute_normals(VoxelGrid &g, const sdk::Task &task)
     g.normal.assign(3 * g.value.size(), 0);
     std::vector<float> magnitude(g.value.size(), 0.0f);
     const Mat3 &inv = g.to_voxel; // rows of M^-1 = columns of M^-T
-    for (int64_t k = 0; k < g.nz; ++k) {
-        if ((k & 15) == 0)
-            task.throw_if_cancelled();
+    for_slabs(g.nz, task, [&](int64_t k) {
         for (int64_t j = 0; j < g.ny; ++j)
             for (int64_t i = 0; i < g.nx; ++i) {
                 const auto diff = [&](int64_t a0, int64_t a1, int64_t b0, int64_t b1, int64_t c0, int64_t c1) {
@@ -73,7 +89,7 @@ void compute_normals(VoxelGrid &g, const sdk::Task &task)
                 for (int c = 0; c < 3; ++c)
                     n[c] = static_cast<int8_t>(std::lround(127.0 * gw[c] / len));
             }
-    }
+    });
     std::vector<float> sample;
     const std::size_t stride = std::max<std::size_t>(1, magnitude.size() / (1 << 20));
     for (std::size_t v = 0; v < magnitude.size(); v += stride)
@@ -82,31 +98,37 @@ void compute_normals(VoxelGrid &g, const sdk::Task &task)
     std::nth_element(sample.begin(), at, sample.end());
     const float top = *at > 0 ? *at : 1.0f;
     g.gradient.resize(magnitude.size());
-    for (std::size_t v = 0; v < magnitude.size(); ++v)
-        g.gradient[v] = static_cast<uint8_t>(std::min(255.0f, std::round(255.0f * magnitude[v] / top)));
+    const std::size_t slab = static_cast<std::size_t>(g.nx * g.ny);
+    for_slabs(g.nz, task, [&](int64_t k) {
+        for (std::size_t v = static_cast<std::size_t>(k) * slab; v < static_cast<std::size_t>(k + 1) * slab; ++v)
+            g.gradient[v] = static_cast<uint8_t>(std::min(255.0f, std::round(255.0f * magnitude[v] / top)));
+    });
 }
 
 } // namespace
 
-const VoxelGrid &VoxelGridCache::update(const arbor_render_request &request, const sdk::Task &task)
+const VoxelGrid &VoxelGridCache::update(const arbor_volume &v, uint64_t volume_revision,
+                                        const arbor_label_map *label_map, uint64_t labels_revision,
+                                        const sdk::Task &task)
 {
-    const arbor_volume &v = *request.volume;
     const std::array<int64_t, 3> dims{v.dims[0], v.dims[1], v.dims[2]};
-    if (v.voxels != voxels_ || request.volume_revision != volume_revision_ || dims != dims_) {
+    if (v.voxels != voxels_ || volume_revision != volume_revision_ || volume_revision == 0 || dims != dims_) {
+        voxels_ = nullptr; // a cancelled rebuild leaves the grid stale
+        ++generation_;
         VoxelGrid &g = grid_;
         g.nx = dims[0];
         g.ny = dims[1];
         g.nz = dims[2];
         g.value.resize(static_cast<std::size_t>(g.nx * g.ny * g.nz));
         switch (v.voxel_type) {
-        case ARBOR_VOXEL_U8: copy_values<uint8_t>(v, g.value); break;
-        case ARBOR_VOXEL_I8: copy_values<int8_t>(v, g.value); break;
-        case ARBOR_VOXEL_U16: copy_values<uint16_t>(v, g.value); break;
-        case ARBOR_VOXEL_I16: copy_values<int16_t>(v, g.value); break;
-        case ARBOR_VOXEL_U32: copy_values<uint32_t>(v, g.value); break;
-        case ARBOR_VOXEL_I32: copy_values<int32_t>(v, g.value); break;
-        case ARBOR_VOXEL_F32: copy_values<float>(v, g.value); break;
-        case ARBOR_VOXEL_F64: copy_values<double>(v, g.value); break;
+        case ARBOR_VOXEL_U8: copy_values<uint8_t>(v, g.value, task); break;
+        case ARBOR_VOXEL_I8: copy_values<int8_t>(v, g.value, task); break;
+        case ARBOR_VOXEL_U16: copy_values<uint16_t>(v, g.value, task); break;
+        case ARBOR_VOXEL_I16: copy_values<int16_t>(v, g.value, task); break;
+        case ARBOR_VOXEL_U32: copy_values<uint32_t>(v, g.value, task); break;
+        case ARBOR_VOXEL_I32: copy_values<int32_t>(v, g.value, task); break;
+        case ARBOR_VOXEL_F32: copy_values<float>(v, g.value, task); break;
+        case ARBOR_VOXEL_F64: copy_values<double>(v, g.value, task); break;
         default: sdk::fail(ARBOR_ERROR_UNSUPPORTED, "unknown voxel type");
         }
         for (float x : g.value)
@@ -120,21 +142,22 @@ const VoxelGrid &VoxelGridCache::update(const arbor_render_request &request, con
         g.min_spacing = std::min({v.spacing[0], v.spacing[1], v.spacing[2]});
         compute_normals(g, task);
         voxels_ = v.voxels;
-        volume_revision_ = request.volume_revision;
+        volume_revision_ = volume_revision;
         dims_ = dims;
         labels_ = nullptr; // labels are re-read for a new volume
     }
-    const void *labels = request.labels ? request.labels->labels : nullptr;
-    if (labels != labels_ || request.labels_revision != labels_revision_) {
+    const void *labels = label_map ? label_map->labels : nullptr;
+    if (labels != labels_ || labels_revision != labels_revision_ || (labels && labels_revision == 0)) {
+        ++generation_;
         grid_.max_label = 0;
         if (labels) {
-            grid_.label.assign(request.labels->labels, request.labels->labels + grid_.value.size());
+            grid_.label.assign(label_map->labels, label_map->labels + grid_.value.size());
             grid_.max_label = *std::max_element(grid_.label.begin(), grid_.label.end());
         } else {
             grid_.label.clear();
         }
         labels_ = labels;
-        labels_revision_ = request.labels_revision;
+        labels_revision_ = labels_revision;
     }
     return grid_;
 }

@@ -40,11 +40,16 @@ struct VoxelGrid {
 
 class VoxelGridCache {
 public:
-    // Brings the grid up to date with the request (values and normals when the
-    // volume changed, labels when they changed).
-    const VoxelGrid &update(const arbor_render_request &request, const sdk::Task &task);
+    // Brings the grid up to date (values and normals when the volume
+    // changed, labels when they changed; a revision of 0 is "unknown":
+    // rebuilt).  On all cores, cancellable.
+    const VoxelGrid &update(const arbor_volume &volume, uint64_t volume_revision, const arbor_label_map *labels,
+                            uint64_t labels_revision, const sdk::Task &task);
+    // Changes whenever update changed the grid.
+    uint64_t generation() const { return generation_; }
 
 private:
+    uint64_t generation_ = 0;
     VoxelGrid grid_;
     const void *voxels_ = nullptr, *labels_ = nullptr;
     uint64_t volume_revision_ = ~uint64_t{0}, labels_revision_ = ~uint64_t{0};

@@ -69,7 +69,7 @@ _Static_assert(offsetof(arbor_host, version) == 24, "offset of arbor_host.versio
 _Static_assert(offsetof(arbor_host, host_data) == 32, "offset of arbor_host.host_data changed");
 _Static_assert(offsetof(arbor_host, log) == 40, "offset of arbor_host.log changed");
 _Static_assert(offsetof(arbor_host, get_extension) == 48, "offset of arbor_host.get_extension changed");
-_Static_assert(sizeof(arbor_image) == 56, "size of arbor_image changed");
+_Static_assert(sizeof(arbor_image) == 64, "size of arbor_image changed");
 _Static_assert(_Alignof(arbor_image) == 8, "alignment of arbor_image changed");
 _Static_assert(offsetof(arbor_image, struct_size) == 0, "offset of arbor_image.struct_size changed");
 _Static_assert(offsetof(arbor_image, width) == 4, "offset of arbor_image.width changed");
@@ -81,6 +81,7 @@ _Static_assert(offsetof(arbor_image, depth) == 32, "offset of arbor_image.depth 
 _Static_assert(offsetof(arbor_image, label_visibility) == 40, "offset of arbor_image.label_visibility changed");
 _Static_assert(offsetof(arbor_image, label_visibility_count) == 48, "offset of arbor_image.label_visibility_count changed");
 _Static_assert(offsetof(arbor_image, reserved1) == 52, "offset of arbor_image.reserved1 changed");
+_Static_assert(offsetof(arbor_image, depth_stride) == 56, "offset of arbor_image.depth_stride changed");
 _Static_assert(sizeof(arbor_importer_v1) == 32, "size of arbor_importer_v1 changed");
 _Static_assert(_Alignof(arbor_importer_v1) == 8, "alignment of arbor_importer_v1 changed");
 _Static_assert(offsetof(arbor_importer_v1, suffixes) == 0, "offset of arbor_importer_v1.suffixes changed");
@@ -174,9 +175,34 @@ _Static_assert(offsetof(arbor_render_request, camera) == 32, "offset of arbor_re
 _Static_assert(offsetof(arbor_render_request, background) == 40, "offset of arbor_render_request.background changed");
 _Static_assert(offsetof(arbor_render_request, volume_revision) == 56, "offset of arbor_render_request.volume_revision changed");
 _Static_assert(offsetof(arbor_render_request, labels_revision) == 64, "offset of arbor_render_request.labels_revision changed");
+_Static_assert(sizeof(arbor_render_request_v2) == 112, "size of arbor_render_request_v2 changed");
+_Static_assert(_Alignof(arbor_render_request_v2) == 8, "alignment of arbor_render_request_v2 changed");
+_Static_assert(offsetof(arbor_render_request_v2, struct_size) == 0, "offset of arbor_render_request_v2.struct_size changed");
+_Static_assert(offsetof(arbor_render_request_v2, pass) == 4, "offset of arbor_render_request_v2.pass changed");
+_Static_assert(offsetof(arbor_render_request_v2, volume) == 8, "offset of arbor_render_request_v2.volume changed");
+_Static_assert(offsetof(arbor_render_request_v2, labels) == 16, "offset of arbor_render_request_v2.labels changed");
+_Static_assert(offsetof(arbor_render_request_v2, transfer_functions) == 24, "offset of arbor_render_request_v2.transfer_functions changed");
+_Static_assert(offsetof(arbor_render_request_v2, camera) == 32, "offset of arbor_render_request_v2.camera changed");
+_Static_assert(offsetof(arbor_render_request_v2, background) == 40, "offset of arbor_render_request_v2.background changed");
+_Static_assert(offsetof(arbor_render_request_v2, volume_revision) == 56, "offset of arbor_render_request_v2.volume_revision changed");
+_Static_assert(offsetof(arbor_render_request_v2, labels_revision) == 64, "offset of arbor_render_request_v2.labels_revision changed");
+_Static_assert(offsetof(arbor_render_request_v2, transfer_functions_revision) == 72, "offset of arbor_render_request_v2.transfer_functions_revision changed");
+_Static_assert(offsetof(arbor_render_request_v2, frame_width) == 80, "offset of arbor_render_request_v2.frame_width changed");
+_Static_assert(offsetof(arbor_render_request_v2, frame_height) == 84, "offset of arbor_render_request_v2.frame_height changed");
+_Static_assert(offsetof(arbor_render_request_v2, region_x) == 88, "offset of arbor_render_request_v2.region_x changed");
+_Static_assert(offsetof(arbor_render_request_v2, region_y) == 92, "offset of arbor_render_request_v2.region_y changed");
+_Static_assert(offsetof(arbor_render_request_v2, region_width) == 96, "offset of arbor_render_request_v2.region_width changed");
+_Static_assert(offsetof(arbor_render_request_v2, region_height) == 100, "offset of arbor_render_request_v2.region_height changed");
+_Static_assert(offsetof(arbor_render_request_v2, sample_index) == 104, "offset of arbor_render_request_v2.sample_index changed");
+_Static_assert(offsetof(arbor_render_request_v2, reserved0) == 108, "offset of arbor_render_request_v2.reserved0 changed");
 _Static_assert(sizeof(arbor_renderer_v1) == 8, "size of arbor_renderer_v1 changed");
 _Static_assert(_Alignof(arbor_renderer_v1) == 8, "alignment of arbor_renderer_v1 changed");
 _Static_assert(offsetof(arbor_renderer_v1, render) == 0, "offset of arbor_renderer_v1.render changed");
+_Static_assert(sizeof(arbor_renderer_v2) == 16, "size of arbor_renderer_v2 changed");
+_Static_assert(_Alignof(arbor_renderer_v2) == 8, "alignment of arbor_renderer_v2 changed");
+_Static_assert(offsetof(arbor_renderer_v2, struct_size) == 0, "offset of arbor_renderer_v2.struct_size changed");
+_Static_assert(offsetof(arbor_renderer_v2, reserved0) == 4, "offset of arbor_renderer_v2.reserved0 changed");
+_Static_assert(offsetof(arbor_renderer_v2, render) == 8, "offset of arbor_renderer_v2.render changed");
 _Static_assert(sizeof(arbor_simplifier_v1) == 16, "size of arbor_simplifier_v1 changed");
 _Static_assert(_Alignof(arbor_simplifier_v1) == 8, "alignment of arbor_simplifier_v1 changed");
 _Static_assert(offsetof(arbor_simplifier_v1, prepare) == 0, "offset of arbor_simplifier_v1.prepare changed");
@@ -281,6 +307,9 @@ int main(void)
         {"ARBOR_MEASURE_VOLUME_MM3", ARBOR_MEASURE_VOLUME_MM3, "volume-mm3"},
         {"ARBOR_MEASURE_HYPERVOLUME", ARBOR_MEASURE_HYPERVOLUME, "hypervolume"},
         {"ARBOR_MEASURE_RELATIVE_HYPERVOLUME", ARBOR_MEASURE_RELATIVE_HYPERVOLUME, "relative-hypervolume"},
+        {"ARBOR_MEASURE_THICKNESS", ARBOR_MEASURE_THICKNESS, "thickness-mm"},
+        {"ARBOR_MEASURE_COMPACTNESS", ARBOR_MEASURE_COMPACTNESS, "compactness"},
+        {"ARBOR_INTERFACE_RENDERER_2", ARBOR_INTERFACE_RENDERER_2, "arbor.renderer/2"},
     };
     int failures = 0;
     size_t i;

@@ -218,7 +218,7 @@ class Plugins(unittest.TestCase):
         self.assertEqual(code, 0)
         j = json.loads(out)
         reasons = {pathlib.Path(r["library"]).name + " " + r["plugin"]: r["reason"] for r in j["refused"]}
-        self.assertIn("ABI 2.1.0", reasons["fixture-abi2.so "])
+        self.assertIn("ABI 2.", reasons["fixture-abi2.so "])
         self.assertIn("arbor_entry", reasons["fixture-no-entry.so "])
         self.assertTrue(any("reverse-DNS" in v for v in reasons.values()))
         ids = {p["id"] for p in j["plugins"]}

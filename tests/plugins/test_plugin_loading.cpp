@@ -33,7 +33,7 @@ TEST(PluginLoading, RefusesAnotherAbiMajorAndCarriesOn)
     r.load_directories({ARBOR_FIXTURE_PLUGIN_DIR});
     const PluginRefusal *x = refusal_for(r, "fixture-abi2");
     ASSERT_NE(x, nullptr);
-    EXPECT_NE(x->reason.find("ABI 2.1.0"), std::string::npos) << x->reason;
+    EXPECT_NE(x->reason.find("ABI 2."), std::string::npos) << x->reason;
     EXPECT_NE(x->reason.find("speaks ABI 1"), std::string::npos) << x->reason;
     // The good fixture in the same folder still loads.
     EXPECT_NE(r.find("org.arbor.test.good"), nullptr);
@@ -146,7 +146,7 @@ TEST(PluginCheck, ReportsAWrongAbiAsALoadFailure)
     ASSERT_FALSE(r.checks.empty());
     EXPECT_EQ(r.checks[0].name, "load");
     EXPECT_FALSE(r.checks[0].passed);
-    EXPECT_NE(r.checks[0].detail.find("ABI 2.1.0"), std::string::npos);
+    EXPECT_NE(r.checks[0].detail.find("ABI 2."), std::string::npos);
 }
 
 TEST(PluginCheck, PassesOnTheGoodFixture)

@@ -1,9 +1,13 @@
 // The CPU ray caster through the ABI: the analytic slab (alpha = 1 -
 // exp(-kappa L)), label-aware classification of equal values, the camera's
-// orientation, depth of the first half-opaque hit, and refusal of labels
-// without transfer functions.
+// orientation, depth of the first half-opaque hit, refusal of labels
+// without transfer functions; and arbor.renderer/2: tiles that join into the
+// full frame, a coarse pass close to the full one, supersampling that
+// converges, revisions that decide what is rebuilt, cancellation that
+// leaves old or final pixels.
 #include "plugin_fixture.hpp"
 
+#include "core/cancelled.hpp"
 #include "host/rendering.hpp"
 #include "host/tf_generation.hpp"
 
@@ -277,6 +281,204 @@ TEST(CpuRayCaster, LabelsWithoutTransferFunctionsAreRefused)
     } catch (const PluginError &e) {
         EXPECT_NE(std::string(e.what()).find("label 5"), std::string::npos) << e.what();
     }
+}
+
+// A lit, labelled ball in a shell: something with edges for the passes to
+// get right or wrong.
+struct Interactive {
+    Volume volume = cube([](int64_t i, int64_t j, int64_t k) {
+        const double r = std::hypot(i - 31.5, j - 31.5, k - 31.5);
+        return static_cast<float>(r < 12 ? 100 : r > 22 && r < 26 ? 80 : 10);
+    });
+    std::vector<uint32_t> labels = std::vector<uint32_t>(kN * kN * kN, 0);
+    TransferFunctions tf{2, kLut, 1.0};
+    Scene scene;
+    arbor_volume view = volume.view();
+    arbor_label_map map{};
+    arbor_render_request request{};
+
+    Interactive()
+    {
+        for (int64_t k = 0; k < kN; ++k)
+            for (int64_t j = 0; j < kN; ++j)
+                for (int64_t i = 0; i < kN; ++i)
+                    labels[static_cast<std::size_t>(i + kN * (j + kN * k))] =
+                        std::hypot(i - 31.5, j - 31.5, k - 31.5) < 17 ? 1u : 0u;
+        step_function(tf, 0, {0.9f, 0.8f, 0.6f}, 0.15f);
+        step_function(tf, 1, {0.8f, 0.2f, 0.2f}, 0.4f);
+        scene.set("shading", "true");
+        scene.set("jitter", "true");
+        scene.camera.projection = ARBOR_PROJECTION_PERSPECTIVE;
+        scene.camera.view_angle = 30;
+        const double c = (kN - 1) / 2.0;
+        scene.camera.position[0] = c + 60, scene.camera.position[1] = c - 90, scene.camera.position[2] = c + 40;
+        scene.camera.focal_point[0] = c, scene.camera.focal_point[1] = c, scene.camera.focal_point[2] = c;
+        scene.camera.view_up[2] = 1;
+        map.struct_size = sizeof map;
+        map.label_count = 2;
+        map.dims[0] = map.dims[1] = map.dims[2] = kN;
+        map.labels = labels.data();
+        request.struct_size = sizeof request;
+        request.volume = &view;
+        request.labels = &map;
+        request.transfer_functions = &tf.record();
+        request.camera = &scene.camera;
+        request.volume_revision = request.labels_revision = 7;
+    }
+    RenderedImage frame(uint32_t w, uint32_t h) const
+    {
+        RenderedImage f;
+        f.width = w;
+        f.height = h;
+        f.rgba.assign(std::size_t{w} * h * 4, 0.0f);
+        f.depth.assign(std::size_t{w} * h, 0.0f);
+        return f;
+    }
+    RenderedImage render(FramePass pass = {}, uint32_t w = 96, uint32_t h = 80)
+    {
+        pass.transfer_functions_revision = tf_revision;
+        return render_image(scene.renderer, request, w, h, nullptr, {}, pass);
+    }
+    uint64_t tf_revision = 1;
+};
+
+// Peak signal-to-noise ratio of a against b, over RGB, in dB.
+double psnr(const RenderedImage &a, const RenderedImage &b)
+{
+    double se = 0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i)
+        if (i % 4 != 3) {
+            se += (a.rgba[i] - b.rgba[i]) * (a.rgba[i] - b.rgba[i]);
+            ++n;
+        }
+    return se > 0 ? 10 * std::log10(n / se) : INFINITY;
+}
+
+TEST(CpuRayCaster2, OffersTheInteractiveInterface)
+{
+    Interactive s;
+    EXPECT_TRUE(renders_passes(s.scene.renderer));
+}
+
+TEST(CpuRayCaster2, TilesJoinIntoTheFullFrameExactly)
+{
+    Interactive s;
+    for (const arbor_render_pass p : {ARBOR_RENDER_PASS_FULL, ARBOR_RENDER_PASS_COARSE}) {
+        const RenderedImage whole = s.render({p});
+        RenderedImage tiled = s.frame(96, 80);
+        std::vector<double> visibility(2, 0.0);
+        // Uneven tiles, not aligned to the coarse pass's 4 x 4 blocks.
+        for (uint32_t y = 0; y < 80; y += 27)
+            for (uint32_t x = 0; x < 96; x += 37) {
+                render_region(s.scene.renderer, s.request, tiled,
+                              {x, y, std::min(37u, 96 - x), std::min(27u, 80 - y)}, {p, 0, s.tf_revision});
+                for (std::size_t l = 0; l < 2; ++l)
+                    visibility[l] += tiled.label_visibility[l];
+            }
+        EXPECT_EQ(tiled.rgba, whole.rgba) << "pass " << p;
+        if (p == ARBOR_RENDER_PASS_FULL) {
+            EXPECT_EQ(tiled.depth, whole.depth);
+            for (std::size_t l = 0; l < 2; ++l)
+                EXPECT_NEAR(visibility[l], whole.label_visibility[l], 1e-6 * (1 + whole.label_visibility[l]));
+        }
+    }
+}
+
+TEST(CpuRayCaster2, TheCoarsePassIsCloseToTheFullOneAndFaster)
+{
+    Interactive s;
+    const RenderedImage full = s.render({}, 256, 256);
+    const RenderedImage coarse = s.render({ARBOR_RENDER_PASS_COARSE}, 256, 256);
+    const double db = psnr(coarse, full);
+    EXPECT_GT(db, 24.0) << "coarse against full: " << db << " dB";
+    EXPECT_LT(db, 80.0) << "the coarse pass is the full one";
+    // Visibility is measured on the coarse pass too, scaled to the frame.
+    double total = 0, full_total = 0;
+    for (std::size_t l = 0; l < 2; ++l) {
+        total += coarse.label_visibility[l];
+        full_total += full.label_visibility[l];
+    }
+    EXPECT_NEAR(total, full_total, 0.1 * full_total);
+}
+
+TEST(CpuRayCaster2, SupersamplingConvergesAndBlendsOnlyWhatIsThere)
+{
+    Interactive s;
+    RenderedImage image = s.render();
+    const RenderedImage once = image;
+    // Pass n blends in 1 / (n + 1) of a new sample: the mean change of the
+    // image falls like 1 / (n + 1).
+    std::vector<double> change;
+    for (uint32_t n = 1; n <= 8; ++n) {
+        const RenderedImage before = image;
+        render_region(s.scene.renderer, s.request, image, {}, {ARBOR_RENDER_PASS_SUPERSAMPLE, n, s.tf_revision});
+        double sum = 0;
+        for (std::size_t i = 0; i < image.rgba.size(); ++i)
+            sum += std::fabs(image.rgba[i] - before.rgba[i]);
+        change.push_back(sum / static_cast<double>(image.rgba.size()));
+        EXPECT_GT(change.back(), 0.0) << "pass " << n << " changed nothing";
+    }
+    EXPECT_LT(change[7], 0.5 * change[0]) << "pass 8 moved the image as much as pass 1";
+    // The refined image stays the same picture: close to the single sample.
+    EXPECT_GT(psnr(image, once), 25.0);
+    EXPECT_EQ(image.depth, once.depth); // depth is the full pass's
+    for (float x : image.rgba)
+        ASSERT_TRUE(x >= 0.0f && x <= 1.0f);
+}
+
+TEST(CpuRayCaster2, RevisionsDecideWhatIsRebuilt)
+{
+    Interactive s;
+    const RenderedImage a = s.render();
+    // New lookup tables under the same revision: the renderer may keep its
+    // tables (the host promised nothing changed) - and it does.
+    step_function(s.tf, 1, {0.2f, 0.2f, 0.9f}, 0.4f);
+    const RenderedImage same = s.render();
+    EXPECT_EQ(same.rgba, a.rgba);
+    // A new revision: the new colours.
+    ++s.tf_revision;
+    const RenderedImage changed = s.render();
+    EXPECT_LT(psnr(changed, a), 30.0);
+    // Revision 0 (unknown): contents decide.
+    s.tf_revision = 0;
+    EXPECT_EQ(s.render().rgba, changed.rgba);
+    step_function(s.tf, 1, {0.8f, 0.2f, 0.2f}, 0.4f);
+    EXPECT_EQ(s.render().rgba, a.rgba);
+}
+
+// Cancels its task once `after` progress reports have come.
+struct CancelAfter : ProgressSink {
+    explicit CancelAfter(int n) : after(n) {}
+    void report(const std::string &, double) override
+    {
+        if (--after == 0)
+            source.request_stop();
+    }
+    void finish() override {}
+    int after;
+    std::stop_source source;
+};
+
+TEST(CpuRayCaster2, ACancelledPassLeavesOldOrFinalPixels)
+{
+    Interactive s;
+    const RenderedImage final_image = s.render({}, 512, 512);
+    RenderedImage image = s.frame(512, 512);
+    std::fill(image.rgba.begin(), image.rgba.end(), 0.5f); // "before": a grey no ray gives
+    CancelAfter sink(1);
+    EXPECT_THROW(render_region(s.scene.renderer, s.request, image, {}, {ARBOR_RENDER_PASS_FULL, 0, s.tf_revision}, &sink,
+                               sink.source.get_token()),
+                 Cancelled);
+    std::size_t old = 0, done = 0;
+    for (std::size_t p = 0; p < image.rgba.size(); p += 4) {
+        const bool is_old = std::equal(&image.rgba[p], &image.rgba[p] + 4, std::array{0.5f, 0.5f, 0.5f, 0.5f}.begin());
+        const bool is_final = std::equal(&image.rgba[p], &image.rgba[p] + 4, &final_image.rgba[p]);
+        ASSERT_TRUE(is_old || is_final) << "pixel " << p / 4 << " is neither";
+        old += is_old;
+        done += is_final && !is_old;
+    }
+    EXPECT_GT(old, 0u) << "cancelled, yet every pixel was rendered";
 }
 
 } // namespace

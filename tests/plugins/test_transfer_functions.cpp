@@ -330,7 +330,7 @@ TEST(TransferFunctions, RelationWheelLegendIsDrawn)
     PluginInstance n = create("org.arbor.depictor.neighbour");
     const auto &table = n.interface<arbor_depictor_v1>(ARBOR_INTERFACE_DEPICTOR);
     std::vector<float> rgba(256 * 256 * 4, -1.0f);
-    arbor_image image{sizeof(arbor_image), 256, 256, 0, 4 * 256, rgba.data(), nullptr, nullptr, 0, 0};
+    arbor_image image{sizeof(arbor_image), 256, 256, 0, 4 * 256, rgba.data(), nullptr, nullptr, 0, 0, 0};
     arbor_depiction_request dr{sizeof(arbor_depiction_request), 1, &tree};
     Task task;
     n.check(table.legend(n.get(), &dr, &image, task.get()), "legend");

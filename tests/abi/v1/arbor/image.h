@@ -34,6 +34,11 @@ typedef struct arbor_image {
     double *label_visibility;
     uint32_t label_visibility_count;
     uint32_t reserved1;
+    /* Since ABI 1.2 (check ARBOR_HAS_FIELD(arbor_image, struct_size,
+     * depth_stride)): floats between the starts of two rows of depth,
+     * >= width; 0 (or an older host) means width.  With row_stride it lets
+     * the host point rgba and depth at a tile inside a larger frame. */
+    int64_t depth_stride;
 } arbor_image;
 
 #endif /* ARBOR_IMAGE_H */

@@ -56,4 +56,82 @@ typedef struct arbor_renderer_v1 {
                            arbor_image *out, arbor_task *task);
 } arbor_renderer_v1;
 
+/* ------------------------------------------------------------------------
+ * arbor.renderer/2 (since ABI 1.2): rendering for interaction.  A renderer
+ * may offer /1, /2 or both; the host uses /2 when it is there and keeps
+ * serving renderers that offer /1 alone (full frames, one pass).
+ *
+ * Tiles.  The host asks for a region of a full frame of frame_width x
+ * frame_height pixels (the frame the camera spans); *out is region-sized,
+ * its pixel (0, 0) is frame pixel (region_x, region_y), and row_stride and
+ * depth_stride let it sit inside the host's frame buffer.  A region's
+ * pixels are exactly the frame's pixels there: tiles rendered separately
+ * join without seams.
+ *
+ * Passes.  ARBOR_RENDER_PASS_FULL is the full-quality image.
+ * ARBOR_RENDER_PASS_COARSE is fast enough to answer a dragged slider or
+ * mouse: fewer rays (the renderer fills every pixel of the region, e.g. by
+ * spreading each ray over a block of pixels) and larger steps.
+ * ARBOR_RENDER_PASS_SUPERSAMPLE refines a full image while the user is
+ * idle: *out holds the image after sample_index - 1 refinements (the full
+ * pass's for sample_index 1), and the renderer blends in one more sample per
+ * pixel, offset within the pixel and along the ray, as
+ * out = (sample_index * out + sample) / (sample_index + 1).  A renderer
+ * without a coarse or supersample pass renders FULL for COARSE and returns
+ * ARBOR_ERROR_UNSUPPORTED for SUPERSAMPLE.
+ *
+ * Revisions.  Each revision changes whenever the contents behind its
+ * pointer change (and only then, for the host's cache to work): a renderer
+ * compares them to decide what to rebuild and never needs to hash lookup
+ * tables.  0 means unknown: treat the contents as changed.
+ *
+ * Visibility (label_visibility in *out): summed over the region's pixels;
+ * the host adds up its tiles.  For SUPERSAMPLE, over the new samples.
+ *
+ * Cancellation.  When task->cancelled turns true the renderer returns
+ * ARBOR_ERROR_CANCELLED soon (within a tile's rows, not at the end of the
+ * frame).  Then each pixel of the region holds either its contents before
+ * the call or its final value for this pass, never a partial value, depth
+ * likewise; label_visibility is undefined.
+ *
+ * Threads.  The host calls one instance from one thread at a time (see
+ * plugin.h), not always from the same thread: the pipeline runs each render
+ * as a job.  A renderer that needs a thread of its own (an OpenGL context
+ * is current on one thread) keeps one inside the plugin and hands each call
+ * to it.  A renderer may run worker threads within a call and keep them
+ * between calls; the task's callbacks may be called from any of them.
+ * ------------------------------------------------------------------------ */
+#define ARBOR_INTERFACE_RENDERER_2 "arbor.renderer/2"
+
+typedef uint32_t arbor_render_pass;
+#define ARBOR_RENDER_PASS_FULL 0u
+#define ARBOR_RENDER_PASS_COARSE 1u
+#define ARBOR_RENDER_PASS_SUPERSAMPLE 2u
+
+typedef struct arbor_render_request_v2 {
+    uint32_t struct_size;
+    arbor_render_pass pass;
+    const arbor_volume *volume;
+    const arbor_label_map *labels;          /* NULL: every voxel uses function 0 */
+    const arbor_tf_set *transfer_functions; /* one per label */
+    const arbor_camera *camera;
+    float background[4];                    /* straight sRGB + alpha behind the volume */
+    uint64_t volume_revision;               /* voxel values */
+    uint64_t labels_revision;               /* the label map */
+    uint64_t transfer_functions_revision;   /* domains, lookup tables, opacity unit distance */
+    uint32_t frame_width, frame_height;     /* the full frame, > 0 */
+    uint32_t region_x, region_y;            /* the region: within the frame, */
+    uint32_t region_width, region_height;   /* out->width x out->height */
+    uint32_t sample_index;                  /* SUPERSAMPLE: 1, 2, ...; else 0 */
+    uint32_t reserved0;
+} arbor_render_request_v2;
+
+typedef struct arbor_renderer_v2 {
+    uint32_t struct_size;
+    uint32_t reserved0;
+    /* Render `request->pass` of the request's region into *out. */
+    arbor_status (*render)(arbor_plugin *plugin, const arbor_render_request_v2 *request,
+                           arbor_image *out, arbor_task *task);
+} arbor_renderer_v2;
+
 #endif /* ARBOR_RENDERER_H */

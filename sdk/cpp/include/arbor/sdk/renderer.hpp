@@ -1,6 +1,9 @@
 // arbor/sdk/renderer.hpp - base class for renderer plugins written in C++.
-// Derive and implement render; the request's records (volume, labels,
-// transfer functions, camera) and the output image are checked here.
+// Derive and implement render (arbor.renderer/1: full frames), or pass
+// Interface::v2 and implement render_region (arbor.renderer/2: tiles,
+// passes, revisions; then /1 is offered too, as one full-frame FULL pass).
+// The request's records (volume, labels, transfer functions, camera, the
+// region) and the output image are checked here.
 #pragma once
 
 #include <arbor/renderer.h>
@@ -14,24 +17,56 @@ namespace arbor::sdk {
 
 class Renderer : public Instance {
 public:
-    Renderer(const arbor_plugin_descriptor &descriptor, const arbor_host *host, std::vector<ParamSpec> params = {})
-        : Instance(descriptor, host, std::move(params))
+    enum class Interface { v1, v2 };
+
+    Renderer(const arbor_plugin_descriptor &descriptor, const arbor_host *host, std::vector<ParamSpec> params = {},
+             Interface offered = Interface::v1)
+        : Instance(descriptor, host, std::move(params)), offered_(offered)
     {
         table_.render = &c_render;
+        table2_.struct_size = sizeof table2_;
+        table2_.render = &c_render2;
     }
 
-    virtual void render(const arbor_render_request &request, arbor_image &out, const Task &task) = 0;
+    // arbor.renderer/1: the whole frame, full quality.  A v2 renderer need
+    // not override it: it becomes render_region of the full frame.
+    virtual void render(const arbor_render_request &request, arbor_image &out, const Task &task)
+    {
+        arbor_render_request_v2 r{};
+        r.struct_size = sizeof r;
+        r.pass = ARBOR_RENDER_PASS_FULL;
+        r.volume = request.volume;
+        r.labels = request.labels;
+        r.transfer_functions = request.transfer_functions;
+        r.camera = request.camera;
+        for (int c = 0; c < 4; ++c)
+            r.background[c] = request.background[c];
+        r.volume_revision = request.volume_revision;
+        r.labels_revision = request.labels_revision;
+        r.transfer_functions_revision = 0; // unknown: /1 has none
+        r.frame_width = r.region_width = out.width;
+        r.frame_height = r.region_height = out.height;
+        render_region(r, out, task);
+    }
+
+    // arbor.renderer/2: request.pass of the region into out (region-sized).
+    virtual void render_region(const arbor_render_request_v2 &, arbor_image &, const Task &)
+    {
+        fail(ARBOR_ERROR_UNSUPPORTED, "this renderer offers arbor.renderer/1 only");
+    }
 
 protected:
     const void *find_interface(std::string_view id) const override
     {
         if (id == ARBOR_INTERFACE_RENDERER)
             return &table_;
+        if (id == ARBOR_INTERFACE_RENDERER_2 && offered_ == Interface::v2)
+            return &table2_;
         return Instance::find_interface(id);
     }
 
 private:
-    static void check_request(const arbor_render_request &r)
+    template <typename Request> static void check_request(const Request &r)
     {
         require_record(r.volume, "volume");
         require_record(r.transfer_functions, "transfer functions");
@@ -68,16 +103,47 @@ private:
     {
         return guarded(plugin, [&](Instance &self) {
             require_record(request, "render request");
-            require_record(out, "image");
-            if (!out->rgba || out->width == 0 || out->height == 0 ||
-                out->row_stride < 4 * static_cast<int64_t>(out->width))
-                fail(ARBOR_ERROR_INVALID_ARGUMENT, "image has no pixels or a bad row stride");
+            check_image(out);
             check_request(*request);
             static_cast<Renderer &>(self).render(*request, *out, Task(task));
         });
     }
 
+    static void check_image(const arbor_image *out)
+    {
+        require_record(out, "image");
+        if (!out->rgba || out->width == 0 || out->height == 0 ||
+            out->row_stride < 4 * static_cast<int64_t>(out->width))
+            fail(ARBOR_ERROR_INVALID_ARGUMENT, "image has no pixels or a bad row stride");
+        if (ARBOR_HAS_FIELD(arbor_image, out->struct_size, depth_stride) && out->depth_stride != 0 &&
+            out->depth_stride < static_cast<int64_t>(out->width))
+            fail(ARBOR_ERROR_INVALID_ARGUMENT, "image has a depth stride below its width");
+    }
+
+    static arbor_status c_render2(arbor_plugin *plugin, const arbor_render_request_v2 *request, arbor_image *out,
+                                  arbor_task *task)
+    {
+        return guarded(plugin, [&](Instance &self) {
+            require_record(request, "render request");
+            check_image(out);
+            check_request(*request);
+            const arbor_render_request_v2 &r = *request;
+            if (r.pass > ARBOR_RENDER_PASS_SUPERSAMPLE)
+                fail(ARBOR_ERROR_INVALID_ARGUMENT, "unknown render pass " + std::to_string(r.pass));
+            if (r.pass == ARBOR_RENDER_PASS_SUPERSAMPLE && r.sample_index == 0)
+                fail(ARBOR_ERROR_INVALID_ARGUMENT, "a supersample pass counts its samples from 1");
+            if (r.frame_width == 0 || r.frame_height == 0 || r.region_width != out->width ||
+                r.region_height != out->height || r.region_x >= r.frame_width || r.region_y >= r.frame_height ||
+                r.region_width > r.frame_width - r.region_x || r.region_height > r.frame_height - r.region_y)
+                fail(ARBOR_ERROR_INVALID_ARGUMENT, "the region is empty, lies outside the frame or differs from the "
+                                                   "image's size");
+            static_cast<Renderer &>(self).render_region(r, *out, Task(task));
+        });
+    }
+
+    Interface offered_;
     arbor_renderer_v1 table_{};
+    arbor_renderer_v2 table2_{};
 };
 
 } // namespace arbor::sdk
