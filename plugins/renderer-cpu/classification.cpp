@@ -1,6 +1,7 @@
 #include "classification.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace arbor::raycast {
@@ -24,6 +25,21 @@ void ClassTable::build(const arbor_tf_set &tf, double step_mm)
             out[3] = static_cast<float>(a);
         }
     }
+    // Level l holds the largest opacity of entries [i, i + 2^l).
+    levels_ = static_cast<uint32_t>(std::bit_width(size_));
+    max_alpha_.assign(static_cast<std::size_t>(tf.branch_count) * levels_ * size_, 0.0f);
+    for (uint32_t b = 0; b < tf.branch_count; ++b) {
+        float *level0 = &max_alpha_[static_cast<std::size_t>(b) * levels_ * size_];
+        for (uint32_t i = 0; i < size_; ++i)
+            level0[i] = rgba_[(static_cast<std::size_t>(b) * size_ + i) * 4 + 3];
+        for (uint32_t l = 1; l < levels_; ++l) {
+            const float *below = level0 + static_cast<std::size_t>(l - 1) * size_;
+            float *row = level0 + static_cast<std::size_t>(l) * size_;
+            const uint32_t half = 1u << (l - 1);
+            for (uint32_t i = 0; i + (1u << l) <= size_; ++i)
+                row[i] = std::max(below[i], below[i + half]);
+        }
+    }
 }
 
 float ClassTable::max_alpha(uint32_t label, float lo, float hi) const
@@ -33,11 +49,11 @@ float ClassTable::max_alpha(uint32_t label, float lo, float hi) const
         const float x = (v - r.low) * r.scale;
         return static_cast<uint32_t>(std::clamp(x, 0.0f, r.last) + 0.5f);
     };
-    const uint32_t a = at(lo), b = at(hi);
-    float m = 0.0f;
-    for (uint32_t i = std::min(a, b); i <= std::max(a, b); ++i)
-        m = std::max(m, rgba_[(static_cast<std::size_t>(label) * size_ + i) * 4 + 3]);
-    return m;
+    const uint32_t a = std::min(at(lo), at(hi)), b = std::max(at(lo), at(hi));
+    // Sparse table: the larger of the two power-of-two windows covering [a, b].
+    const uint32_t level = static_cast<uint32_t>(std::bit_width(b - a + 1)) - 1;
+    const float *row = &max_alpha_[(static_cast<std::size_t>(label) * levels_ + level) * size_];
+    return std::max(row[a], row[b + 1 - (1u << level)]);
 }
 
 void BoundaryEmphasis::build(const VoxelGrid &g, const ClassTable &table, double strength)
@@ -48,7 +64,7 @@ void BoundaryEmphasis::build(const VoxelGrid &g, const ClassTable &table, double
         return;
     std::array<double, 256> histogram{};
     double total = 0;
-    const std::size_t n = g.value.size(), stride = std::max<std::size_t>(1, n / (1 << 21));
+    const std::size_t n = g.value.size(), stride = std::max<std::size_t>(1, n / (1 << 18));
     for (std::size_t v = 0; v < n; v += stride) {
         const uint32_t label = g.label.empty() ? 0u : g.label[v];
         if (table.lookup(label, g.value[v])[3] > 0.0f) {

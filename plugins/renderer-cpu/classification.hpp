@@ -35,9 +35,10 @@ private:
     struct Range {
         float low, scale, last;
     };
-    uint32_t size_ = 0;
+    uint32_t size_ = 0, levels_ = 0;
     std::vector<Range> range_;
     std::vector<float> rgba_;
+    std::vector<float> max_alpha_; // per label and level: a sparse table of opacity maxima
 };
 
 // Opacity that emphasises boundaries, as clinical presets do: a sample's

@@ -5,8 +5,9 @@
 // for the sample distance; Blinn-Phong shading with a headlight from
 // per-voxel gradient directions; early ray termination; empty-space
 // skipping over 8^3 blocks.  arbor.renderer/2: regions of a frame, a
-// coarse pass (a ray per 4x4 pixels, interpolated, at twice the step) for
-// interaction, supersampling while idle; tiles of rows on a persistent
+// coarse pass for interaction (a ray per n x n pixels, n chosen to reach a
+// frame rate, interpolated, at twice the step, through a half-resolution
+// copy of large volumes), supersampling while idle; tiles of rows on a persistent
 // oneTBB pool, cancellable within a tile.  What a new set of transfer
 // functions costs is O(blocks) (block statistics are built per volume and
 // labels revision) plus the boundary-emphasis reference (a sample of
@@ -24,7 +25,9 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -138,9 +141,12 @@ struct Sample {
 };
 
 // Where the passes put their rays.
-constexpr uint32_t kCoarse = 4;        // a coarse ray per kCoarse x kCoarse pixels
+// Pixels per coarse ray (along each side): 4 until timings say otherwise,
+// then one of 2, 2.5, ... 8.
+constexpr double kCoarseStart = 4, kCoarseMin = 2, kCoarseMax = 8, kCoarseStepBy = 0.5;
 constexpr double kCoarseStep = 2.0;    // at this many times the full step
 constexpr uint32_t kRows = 8;          // rows per tile of work
+constexpr int64_t kHalfFrom = int64_t{1} << 22; // voxels from which the coarse pass samples a half-resolution grid
 
 // The R2 sequence (Roberts): well spread offsets within a pixel for the
 // supersample passes.
@@ -184,7 +190,16 @@ public:
                         .hint("Offset each ray's first sample by a per-pixel fraction of a step: noise instead "
                               "of wood-grain rings"),
                     sdk::ParamSpec::integer("threads", "Threads", 0, 0, 256)
-                        .hint("Worker threads; 0 uses every core")},
+                        .hint("Worker threads; 0 uses every core"),
+                    sdk::ParamSpec::real("coarse-rate", "Coarse frame rate", 22.0, 1.0, 240.0)
+                        .unit("frames/s")
+                        .group("Interaction")
+                        .hint("The coarse pass (while the user drags) chooses how many pixels share a ray, from "
+                              "2 x 2 to 8 x 8 in steps of half a pixel, to reach this rate, from the time its last "
+                              "whole frames took"),
+                    sdk::ParamSpec::integer("coarse-pixels", "Coarse pixels per ray", 0, 0, 16)
+                        .group("Interaction")
+                        .hint("A fixed n: one coarse ray per n x n pixels; 0 chooses n from the coarse frame rate")},
                    Interface::v2)
     {
     }
@@ -198,13 +213,17 @@ public:
         shading.diffuse = static_cast<float>(params().number("diffuse"));
         shading.tabulate(static_cast<float>(params().number("specular")), static_cast<float>(params().number("shininess")));
         Pass pass;
-        pass.grid = &g;
+        const bool coarse = request.pass == ARBOR_RENDER_PASS_COARSE;
+        const bool half = coarse && !half_.value.empty();
+        pass.grid = half ? &half_ : &g;
+        pass.occupancy = half ? &half_occupancy_ : &occupancy_;
+        pass.occlusion = half ? 0.0f : shading_occlusion_;
         pass.shading = &shading;
         pass.camera = std::make_unique<Camera>(*request.camera, request.frame_width, request.frame_height);
         pass.termination = static_cast<float>(params().number("termination"));
         pass.jitter = params().flag("jitter");
         pass.background = request.background;
-        pass.coarse = request.pass == ARBOR_RENDER_PASS_COARSE;
+        pass.coarse = coarse;
         pass.step = step_ * (pass.coarse ? kCoarseStep : 1.0);
         pass.table = pass.coarse ? &coarse_table_ : &table_;
         pass.sample_index = request.pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? request.sample_index : 0;
@@ -220,6 +239,12 @@ public:
         Slots visibility(static_cast<std::size_t>(arena_->max_concurrency()),
                          std::vector<double>(table_.labels(), 0.0));
         Cancellation cancel(task);
+        // The coarse pass's pixels per ray: fixed, or what reaches the rate.
+        // It changes only between whole frames, so tiles of one frame agree.
+        const bool whole = request.region_width == request.frame_width && request.region_height == request.frame_height;
+        pass.pixels = params().integer("coarse-pixels") > 0 ? static_cast<double>(params().integer("coarse-pixels"))
+                                                             : coarse_pixels_;
+        const auto started = std::chrono::steady_clock::now();
         arena_->execute([&] {
             if (pass.coarse)
                 render_coarse(pass, request, out, cancel, visibility);
@@ -227,6 +252,9 @@ public:
                 render_pixels(pass, request, out, cancel, visibility);
         });
         task.throw_if_cancelled();
+        if (pass.coarse && whole && params().integer("coarse-pixels") == 0)
+            adapt_coarse(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
+                         1.0 / params().number("coarse-rate"));
         if (ARBOR_HAS_FIELD(arbor_image, out.struct_size, label_visibility_count) && out.label_visibility) {
             std::vector<double> sum(table_.labels(), 0.0);
             for (const std::vector<double> &v : visibility)
@@ -238,8 +266,32 @@ public:
     }
 
 private:
+    // After a whole coarse frame that took `seconds`: the fewest pixels per
+    // ray whose frames are predicted to take at most `budget` (a frame's
+    // time goes with its rays, 1 / n^2).  A smoothed time, so one slow frame
+    // does not make the picture jump.
+    void adapt_coarse(double seconds, double budget)
+    {
+        const double n = coarse_pixels_;
+        coarse_seconds_ = coarse_seconds_ > 0 ? 0.5 * coarse_seconds_ + 0.5 * seconds : seconds;
+        const double per_ray_area = coarse_seconds_ * n * n; // the frame's time at one ray per pixel
+        double next = kCoarseMax;
+        for (double m = kCoarseMin; m <= kCoarseMax; m += kCoarseStepBy)
+            if (per_ray_area / (m * m) <= budget) {
+                next = m;
+                break;
+            }
+        if (next != coarse_pixels_) {
+            coarse_seconds_ *= (n * n) / (next * next);
+            coarse_pixels_ = next;
+        }
+    }
+
     struct Pass {
+        double pixels = kCoarseStart; // COARSE: one ray per pixels x pixels
         const VoxelGrid *grid = nullptr;
+        const Occupancy *occupancy = nullptr;
+        float occlusion = 0.0f; // ambient occlusion's strength (full resolution only)
         const Shading *shading = nullptr;
         const ClassTable *table = nullptr;
         std::unique_ptr<Camera> camera;
@@ -266,6 +318,13 @@ private:
         if (grid_changed) {
             blocks_generation_ = ~uint64_t{0};
             blocks_.build(g, task);
+            // Large volumes get a half-resolution copy for the coarse pass:
+            // an eighth of the memory its rays wander through.
+            half_ = VoxelGrid{};
+            if (g.nx * g.ny * g.nz >= kHalfFrom) {
+                downsample(g, half_, task);
+                half_blocks_.build(half_, task);
+            }
             blocks_generation_ = grid_.generation();
         }
         const double step = params().number("sample-distance") * g.min_spacing;
@@ -280,6 +339,8 @@ private:
             table_.build(tf, step);
             coarse_table_.build(tf, step * kCoarseStep);
             occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz});
+            if (!half_.value.empty())
+                half_occupancy_.build(half_blocks_, coarse_table_, {half_.nx, half_.ny, half_.nz});
             boundaries_.build(g, table_, emphasis);
             occlusion_.clear();
             table_print_ = print;
@@ -331,16 +392,16 @@ private:
         });
     }
 
-    // COARSE: a ray per kCoarse x kCoarse block of the frame (at the
+    // COARSE: a ray per n x n block of the frame (at the
     // block's centre, so tiles agree), each pixel bilinear between the four
     // rays around it.  The rays are cast first; the pixels are written only
     // when all are done.
     void render_coarse(const Pass &pass, const arbor_render_request_v2 &request, arbor_image &out,
                        Cancellation &cancel, Slots &visibility) const
     {
-        const double f = kCoarse;
-        const int64_t columns = (request.frame_width + kCoarse - 1) / kCoarse,
-                      rows = (request.frame_height + kCoarse - 1) / kCoarse;
+        const double f = pass.pixels;
+        const auto count = [&](uint32_t side) { return std::max<int64_t>(1, static_cast<int64_t>(std::ceil(side / f))); };
+        const int64_t columns = count(request.frame_width), rows = count(request.frame_height);
         // The ray lattice position of frame pixel centre p: (p - f / 2) / f.
         const auto lattice = [&](double p, int64_t n) { return std::clamp((p - f / 2) / f, 0.0, double(n - 1)); };
         const int64_t m0 = static_cast<int64_t>(lattice(request.region_x + 0.5, columns)),
@@ -351,7 +412,7 @@ private:
                                              static_cast<int64_t>(lattice(request.region_y + out.height - 0.5, rows)) + 1);
         const int64_t w = m1 - m0 + 1, h = n1 - n0 + 1;
         std::vector<Sample> rays(static_cast<std::size_t>(w * h));
-        // Each coarse ray stands for kCoarse^2 pixels of the frame; the
+        // Each coarse ray stands for pixels^2 pixels of the frame; the
         // visibility is scaled to the region's pixels below.
         Slots raw(visibility.size(), std::vector<double>(table_.labels(), 0.0));
         tbb::parallel_for(tbb::blocked_range<int64_t>(0, h, 2), [&](const tbb::blocked_range<int64_t> &r) {
@@ -424,6 +485,7 @@ private:
         const VoxelGrid &g = *pass.grid;
         const Shading &shading = *pass.shading;
         const ClassTable &table = *pass.table;
+        const Occupancy &occupancy = *pass.occupancy;
         const float termination = pass.termination;
         const double step = pass.step;
         const float *background = pass.background;
@@ -433,7 +495,7 @@ private:
                                         ray.origin[2] - g.origin[2]});
         const Vec3 d = mul(g.to_voxel, ray.direction); // voxels per mm
         // Clipped to the box around the blocks that can be visible at all.
-        const std::array<double, 3> &lo = occupancy_.content_low(), &hi = occupancy_.content_high();
+        const std::array<double, 3> &lo = occupancy.content_low(), &hi = occupancy.content_high();
         double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
         for (int a = 0; a < 3; ++a) {
             if (std::fabs(d[a]) < 1e-12) {
@@ -463,7 +525,7 @@ private:
             const int64_t i = std::min(static_cast<int64_t>(px), last_i);
             const int64_t j = std::min(static_cast<int64_t>(py), last_j);
             const int64_t k = std::min(static_cast<int64_t>(pz), last_k);
-            if (occupancy_.empty(i >> 3, j >> 3, k >> 3)) { // kBlock = 8
+            if (occupancy.empty(i >> 3, j >> 3, k >> 3)) { // kBlock = 8
                 t = skip_block(o, d, t, step, i, j, k);
                 continue;
             }
@@ -488,8 +550,8 @@ private:
                         // Headlight: the half vector is the light direction.
                         const float spec = shading.highlight[static_cast<std::size_t>(ndl * 256.0f)] * alpha;
                         float lit = shading.ambient + shading.diffuse * ndl;
-                        if (shading_occlusion_ > 0)
-                            lit *= 1.0f - shading_occlusion_ * occlusion_.at(i, j, k);
+                        if (pass.occlusion > 0)
+                            lit *= 1.0f - pass.occlusion * occlusion_.at(i, j, k);
                         r = r * lit + spec;
                         gr = gr * lit + spec;
                         b = b * lit + spec;
@@ -556,13 +618,17 @@ private:
     VoxelGridCache grid_;
     BlockStatistics blocks_;
     uint64_t blocks_generation_ = ~uint64_t{0};
+    VoxelGrid half_; // empty below kHalfFrom voxels
+    BlockStatistics half_blocks_;
     ClassTable table_, coarse_table_;
-    Occupancy occupancy_;
+    Occupancy occupancy_, half_occupancy_;
     BoundaryEmphasis boundaries_;
     AmbientOcclusion occlusion_;
     float shading_occlusion_ = 0.0f;
     uint64_t table_print_ = 0;
     double step_ = -1.0, emphasis_ = -1.0;
+    double coarse_pixels_ = kCoarseStart;
+    double coarse_seconds_ = 0.0;
     std::unique_ptr<tbb::task_arena> arena_; // the pool the tiles run on (oneTBB's threads persist)
     unsigned arena_threads_ = 0;
 };

@@ -107,6 +107,41 @@ void compute_normals(VoxelGrid &g, const sdk::Task &task)
 
 } // namespace
 
+void downsample(const VoxelGrid &g, VoxelGrid &half, const sdk::Task &task)
+{
+    half.nx = (g.nx + 1) / 2;
+    half.ny = (g.ny + 1) / 2;
+    half.nz = (g.nz + 1) / 2;
+    const std::size_t n = static_cast<std::size_t>(half.nx * half.ny * half.nz);
+    half.value.assign(n, 0.0f);
+    half.label.assign(g.label.empty() ? 0 : n, 0u);
+    half.max_label = g.max_label;
+    for_slabs(half.nz, task, [&](int64_t k) {
+        for (int64_t j = 0; j < half.ny; ++j)
+            for (int64_t i = 0; i < half.nx; ++i) {
+                float sum = 0;
+                int count = 0;
+                for (int64_t c = 2 * k; c <= std::min(2 * k + 1, g.nz - 1); ++c)
+                    for (int64_t b = 2 * j; b <= std::min(2 * j + 1, g.ny - 1); ++b)
+                        for (int64_t a = 2 * i; a <= std::min(2 * i + 1, g.nx - 1); ++a, ++count)
+                            sum += g.value[g.index(a, b, c)];
+                const std::size_t at = half.index(i, j, k);
+                half.value[at] = sum / static_cast<float>(count);
+                if (!g.label.empty())
+                    half.label[at] = g.label[g.index(2 * i, 2 * j, 2 * k)];
+            }
+    });
+    // Each half voxel sits at the centre of the 2 x 2 x 2 block it averages.
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c)
+            half.to_world[3 * r + c] = 2.0 * g.to_world[3 * r + c];
+        half.origin[r] = g.origin[r] + 0.5 * (g.to_world[3 * r] + g.to_world[3 * r + 1] + g.to_world[3 * r + 2]);
+    }
+    half.to_voxel = inverse(half.to_world);
+    half.min_spacing = 2.0 * g.min_spacing;
+    compute_normals(half, task);
+}
+
 const VoxelGrid &VoxelGridCache::update(const arbor_volume &v, uint64_t volume_revision,
                                         const arbor_label_map *label_map, uint64_t labels_revision,
                                         const sdk::Task &task)

@@ -38,6 +38,10 @@ struct VoxelGrid {
     std::size_t index(int64_t i, int64_t j, int64_t k) const { return static_cast<std::size_t>(i + nx * (j + ny * k)); }
 };
 
+// The grid at half resolution for the coarse pass: values averaged over
+// 2 x 2 x 2 voxels, the label of the first, normals and gradients of its own.
+void downsample(const VoxelGrid &g, VoxelGrid &half, const sdk::Task &task);
+
 class VoxelGridCache {
 public:
     // Brings the grid up to date (values and normals when the volume

@@ -4,6 +4,10 @@
 // VTK's CPU mappers take one global transfer function, so this renderer
 // does too: label maps with more than one label are refused.  Debian's VTK
 // renders through X even off screen, so it needs a display (xvfb-run).
+// arbor.renderer/2: the coarse pass is VTK's own interactive mode (the
+// mapper adjusts its image sample distance to reach the desired update
+// rate, from the time its last frames took): the anchor of the interactive
+// benchmark.  Regions are cut out of a full frame; no supersampling.
 #include <arbor/sdk/renderer.hpp>
 
 #include <vtkCamera.h>
@@ -64,12 +68,19 @@ public:
                     sdk::ParamSpec::real("ambient", "Ambient", 0.3, 0.0, 1.0).group("Shading"),
                     sdk::ParamSpec::real("diffuse", "Diffuse", 0.7, 0.0, 1.0).group("Shading"),
                     sdk::ParamSpec::real("specular", "Specular", 0.25, 0.0, 1.0).group("Shading"),
-                    sdk::ParamSpec::real("shininess", "Shininess", 24.0, 1.0, 256.0).group("Shading")})
+                    sdk::ParamSpec::real("shininess", "Shininess", 24.0, 1.0, 256.0).group("Shading"),
+                    sdk::ParamSpec::real("interactive-update-rate", "Interactive update rate", 20.0, 0.1, 1000.0)
+                        .unit("frames/s")
+                        .hint("The coarse pass: VTK's desired update rate, which its mapper meets by casting fewer "
+                              "rays (automatic image sample distance)")},
+                   Interface::v2)
     {
     }
 
-    void render(const arbor_render_request &request, arbor_image &out, const sdk::Task &task) override
+    void render_region(const arbor_render_request_v2 &request, arbor_image &out, const sdk::Task &task) override
     {
+        if (request.pass == ARBOR_RENDER_PASS_SUPERSAMPLE)
+            sdk::fail(ARBOR_ERROR_UNSUPPORTED, "the VTK reference renderer has no supersample pass");
         const char *display = std::getenv("DISPLAY");
         if (!display || !*display)
             sdk::fail(ARBOR_ERROR_UNSUPPORTED, "the VTK reference renderer needs an X display (Debian's VTK 9.1 "
@@ -97,7 +108,13 @@ public:
             window_->AddRenderer(renderer_);
             renderer_->AddVolume(volume_);
         }
-        window_->SetSize(static_cast<int>(out.width), static_cast<int>(out.height));
+        const bool interactive = request.pass == ARBOR_RENDER_PASS_COARSE;
+        mapper_->SetAutoAdjustSampleDistances(interactive ? 1 : 0);
+        if (!interactive)
+            mapper_->SetImageSampleDistance(1.0);
+        window_->SetDesiredUpdateRate(interactive ? params().number("interactive-update-rate") : 0.0001);
+        const uint32_t width = request.frame_width, height = request.frame_height;
+        window_->SetSize(static_cast<int>(width), static_cast<int>(height));
         renderer_->SetBackground(request.background[0], request.background[1], request.background[2]);
         const arbor_camera &c = *request.camera;
         vtkCamera *camera = renderer_->GetActiveCamera();
@@ -116,19 +133,23 @@ public:
         grab->ReadFrontBufferOff();
         grab->Update();
         vtkUnsignedCharArray *pixels = vtkUnsignedCharArray::SafeDownCast(grab->GetOutput()->GetPointData()->GetScalars());
-        if (!pixels || pixels->GetNumberOfTuples() != static_cast<vtkIdType>(out.width) * out.height)
+        if (!pixels || pixels->GetNumberOfTuples() != static_cast<vtkIdType>(width) * height)
             sdk::fail(ARBOR_ERROR_INTERNAL, "VTK returned no image of the requested size");
-        for (uint32_t y = 0; y < out.height; ++y) // VTK's rows run bottom-up
+        const int64_t depth_stride =
+            ARBOR_HAS_FIELD(arbor_image, out.struct_size, depth_stride) && out.depth_stride > 0 ? out.depth_stride : static_cast<int64_t>(out.width);
+        for (uint32_t y = 0; y < out.height; ++y) { // VTK's rows run bottom-up
+            const uint32_t fy = request.region_y + y;
             for (uint32_t x = 0; x < out.width; ++x) {
-                const unsigned char *p = pixels->GetPointer(3 * ((static_cast<vtkIdType>(out.height) - 1 - y) * out.width + x));
+                const uint32_t fx = request.region_x + x;
+                const unsigned char *p = pixels->GetPointer(3 * ((static_cast<vtkIdType>(height) - 1 - fy) * width + fx));
                 float *q = out.rgba + y * out.row_stride + 4 * x;
                 for (int ch = 0; ch < 3; ++ch)
                     q[ch] = p[ch] / 255.0f;
                 q[3] = 1.0f; // composited over the (opaque) background
             }
-        if (out.depth)
-            std::fill(out.depth, out.depth + std::size_t{out.width} * out.height,
-                      std::numeric_limits<float>::infinity()); // VTK does not report it
+            if (out.depth) // VTK does not report it
+                std::fill_n(out.depth + y * depth_stride, out.width, std::numeric_limits<float>::infinity());
+        }
     }
 
 private:

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 namespace arbor {
 namespace {
@@ -308,6 +309,8 @@ struct Interactive {
         step_function(tf, 1, {0.8f, 0.2f, 0.2f}, 0.4f);
         scene.set("shading", "true");
         scene.set("jitter", "true");
+        scene.set("coarse-pixels", "4"); // not chosen from this machine's speed
+
         scene.camera.projection = ARBOR_PROJECTION_PERSPECTIVE;
         scene.camera.view_angle = 30;
         const double c = (kN - 1) / 2.0;
@@ -400,6 +403,78 @@ TEST(CpuRayCaster2, TheCoarsePassIsCloseToTheFullOneAndFaster)
         full_total += full.label_visibility[l];
     }
     EXPECT_NEAR(total, full_total, 0.1 * full_total);
+}
+
+TEST(CpuRayCaster2, OnALargeVolumeTheCoarsePassSamplesHalfResolutionAndStaysClose)
+{
+    // 168^3 voxels: above the size from which the coarse pass rays a
+    // half-resolution copy.  A labelled ball in a shell, as above.
+    constexpr int64_t n = 168;
+    Geometry g;
+    g.dims = {n, n, n};
+    Volume v = Volume::allocate(ARBOR_VOXEL_F32, g, {}, uint64_t{1} << 30);
+    std::vector<uint32_t> labels(static_cast<std::size_t>(n * n * n));
+    const double c = (n - 1) / 2.0;
+    for (int64_t k = 0; k < n; ++k)
+        for (int64_t j = 0; j < n; ++j)
+            for (int64_t i = 0; i < n; ++i) {
+                const double r = std::hypot(i - c, j - c, k - c);
+                const std::size_t at = static_cast<std::size_t>(i + n * (j + n * k));
+                v.as<float>()[at] = static_cast<float>(r < 30 ? 100 : r > 58 && r < 66 ? 80 : 10);
+                labels[at] = r < 44 ? 1u : 0u;
+            }
+    Interactive s;
+    s.view = v.view();
+    for (int a = 0; a < 3; ++a)
+        s.map.dims[a] = n;
+    s.map.labels = labels.data();
+    for (int a = 0; a < 3; ++a) {
+        s.scene.camera.focal_point[a] = c;
+        s.scene.camera.position[a] = c + (a == 0 ? 150 : a == 1 ? -230 : 100);
+    }
+    const RenderedImage full = s.render({}, 256, 256);
+    const RenderedImage coarse = s.render({ARBOR_RENDER_PASS_COARSE}, 256, 256);
+    const double db = psnr(coarse, full);
+    // Lower than at full resolution (hard-edged step functions, a voxel
+    // per 1.5 pixels); a misplaced half grid (by half a voxel) gives 15.
+    EXPECT_GT(db, 20.0) << "coarse against full: " << db << " dB";
+    EXPECT_LT(db, 80.0);
+    // The shell and the ball both show, in their own colours: the centre
+    // pixel is reddish (the ball, label 1), the rim's yellowish (label 0).
+    const float *centre = pixel(coarse, 128, 128), *full_centre = pixel(full, 128, 128);
+    EXPECT_GT(centre[0], centre[2]);
+    EXPECT_NEAR(centre[3], full_centre[3], 0.1);
+    // Tiles still join exactly on the half-resolution path.
+    RenderedImage tiled = s.frame(256, 256);
+    for (uint32_t y = 0; y < 256; y += 100)
+        for (uint32_t x = 0; x < 256; x += 90)
+            render_region(s.scene.renderer, s.request, tiled, {x, y, std::min(90u, 256 - x), std::min(100u, 256 - y)},
+                          {ARBOR_RENDER_PASS_COARSE, 0, s.tf_revision});
+    EXPECT_EQ(tiled.rgba, coarse.rgba);
+}
+
+TEST(CpuRayCaster2, TheCoarsePassChoosesItsRaysFromTheFrameRate)
+{
+    Interactive s;
+    // The images of the extreme fixed choices of pixels per ray, 1024 x 1024.
+    std::map<int, std::vector<float>> fixed;
+    for (int n : {2, 8}) {
+        s.scene.set("coarse-pixels", std::to_string(n));
+        fixed[n] = s.render({ARBOR_RENDER_PASS_COARSE}, 1024, 1024).rgba;
+    }
+    const auto settled = [&](const char *rate) {
+        s.scene.set("coarse-pixels", "0");
+        s.scene.set("coarse-rate", rate);
+        std::vector<float> last;
+        for (int i = 0; i < 8; ++i)
+            last = s.render({ARBOR_RENDER_PASS_COARSE}, 1024, 1024).rgba;
+        return last;
+    };
+    // An easy rate: as many rays as it allows (one per 2 x 2 pixels).
+    EXPECT_EQ(settled("1"), fixed[2]);
+    // A rate no machine reaches with a quarter of a million rays (4 ms a
+    // frame): fewer rays.
+    EXPECT_NE(settled("240"), fixed[2]);
 }
 
 TEST(CpuRayCaster2, SupersamplingConvergesAndBlendsOnlyWhatIsThere)

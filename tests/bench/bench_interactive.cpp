@@ -1,0 +1,241 @@
+// bench_interactive.cpp - the interactive path (issue 14): what a dragged
+// slider or an orbiting mouse costs with the CPU ray caster's
+// arbor.renderer/2 passes, against VTK 9.1's vtkFixedPointVolumeRayCastMapper
+// in its own interactive mode (automatic image sample distance at a desired
+// update rate), in the same run.
+//
+// On the shared CT head DICOM (512x512x108) and the same CT resampled to
+// three times as many slices (512x512x322, built here from it), 20 branches
+// kept (balancing off: it runs once a drag ends), 512x512:
+//   1. flow-rate step -> first coarse image: regenerate the transfer
+//      functions through the pipeline, then a COARSE pass, ms;
+//   2. coarse frames per second while orbiting (3 degrees per frame);
+//   3. the refinement: the FULL pass that replaces the coarse image, ms;
+//   4. PSNR of the coarse image against the full one;
+//   5. one global transfer function for both renderers: Arbor's coarse fps
+//      and VTK's interactive fps (desired update rate 20/s) while orbiting,
+//      each one's PSNR against its own full-quality image.
+// Needs X for VTK: xvfb-run -a build/bin/arbor_bench_interactive.  Prints a
+// table; not a pass/fail test.
+#include "global_ramp.hpp"
+#include "plugin_fixture.hpp"
+
+#include "core/volume_statistics.hpp"
+#include "host/plugin_registry.hpp"
+#include "host/rendering.hpp"
+#include "io/nrrd_writer.hpp"
+#include "pipeline/pipeline.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <vector>
+
+using namespace arbor;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr uint32_t kSize = 512;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0)
+{
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+double median(std::vector<double> v)
+{
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+double psnr(const RenderedImage &a, const RenderedImage &b)
+{
+    double se = 0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i)
+        if (i % 4 != 3) {
+            se += (a.rgba[i] - b.rgba[i]) * (a.rgba[i] - b.rgba[i]);
+            ++n;
+        }
+    return se > 0 ? 10 * std::log10(static_cast<double>(n) / se) : INFINITY;
+}
+
+// The CT head with `factor` times as many slices, linear between them.
+fs::path resampled(const fs::path &dicom, int factor, const fs::path &out)
+{
+    if (fs::exists(out))
+        return out;
+    const Volume v = test::import(dicom);
+    Geometry g = v.geometry();
+    const int64_t nz = (g.dims[2] - 1) * factor + 1, plane = g.dims[0] * g.dims[1];
+    g.dims[2] = nz;
+    g.spacing[2] /= factor;
+    Volume r = Volume::allocate(v.type(), g, v.mapping(), uint64_t{1} << 32);
+    if (v.type() != ARBOR_VOXEL_U16)
+        throw std::runtime_error("the CT head is expected as u16");
+    const uint16_t *src = v.as<uint16_t>();
+    uint16_t *dst = r.as<uint16_t>();
+    for (int64_t k = 0; k < nz; ++k) {
+        const int64_t k0 = k / factor, k1 = std::min(k0 + 1, v.geometry().dims[2] - 1);
+        const double f = static_cast<double>(k % factor) / factor;
+        for (int64_t p = 0; p < plane; ++p)
+            dst[k * plane + p] = static_cast<uint16_t>(
+                std::lround((1 - f) * src[k0 * plane + p] + f * src[k1 * plane + p]));
+    }
+    io::write_nrrd(r, out);
+    return out;
+}
+
+arbor_render_request request_for(const Volume &volume, const arbor_volume &view, arbor_label_map &map,
+                                 const std::vector<uint32_t> &labels, const TransferFunctions &tf,
+                                 const arbor_camera &camera)
+{
+    map = {};
+    map.struct_size = sizeof map;
+    map.label_count = tf.branch_count();
+    for (int a = 0; a < 3; ++a)
+        map.dims[a] = volume.geometry().dims[a];
+    map.labels = labels.data();
+    arbor_render_request r{};
+    r.struct_size = sizeof r;
+    r.volume = &view;
+    r.labels = &map;
+    r.transfer_functions = &tf.record();
+    r.camera = &camera;
+    r.background[3] = 1.0f;
+    r.volume_revision = r.labels_revision = 1;
+    return r;
+}
+
+struct Orbiting {
+    double fps = 0, psnr = 0;
+};
+
+// Frames per second of `pass` while the camera turns 3 degrees a frame, and
+// the PSNR of the last frame against the FULL pass from the same camera.
+Orbiting orbit(PluginInstance &renderer, arbor_render_request r, const Geometry &g, arbor_render_pass pass,
+               uint64_t tf_revision, int frames)
+{
+    Orbit o;
+    o.elevation = 20;
+    arbor_camera camera{};
+    r.camera = &camera;
+    const auto frame = [&](int f, arbor_render_pass p) {
+        o.azimuth = 30 + 3 * f;
+        camera = orbit_camera(g, o);
+        return render_image(renderer, r, kSize, kSize, nullptr, {}, {p, 0, tf_revision});
+    };
+    for (int f = -5; f < 0; ++f) // warm-up: caches, and VTK's adaptation to the update rate
+        frame(f, pass);
+    const auto t0 = Clock::now();
+    RenderedImage last;
+    for (int f = 0; f < frames; ++f)
+        last = frame(f, pass);
+    Orbiting out;
+    out.fps = frames / (ms_since(t0) / 1000.0);
+    out.psnr = psnr(last, frame(frames - 1, ARBOR_RENDER_PASS_FULL));
+    return out;
+}
+
+} // namespace
+
+int main()
+{
+    const char *display = std::getenv("DISPLAY");
+    if (!display || !*display) {
+        std::fprintf(stderr, "arbor_bench_interactive: VTK needs an X display; run under xvfb-run -a\n");
+        return 2;
+    }
+    PluginRegistry registry;
+    registry.load_directories({test::plugin_dir()});
+    const fs::path head = test::shared_data("dicom_ct_head_0051");
+    const fs::path scratch = fs::temp_directory_path() / "arbor-bench-interactive";
+    fs::create_directories(scratch);
+    const fs::path tall = resampled(head, 3, scratch / "ct_head_x3.nrrd");
+
+    std::printf("arbor_bench_interactive: %ux%u, 2 cores here, CPU ray caster's arbor.renderer/2 passes; "
+                "VTK's vtkFixedPointVolumeRayCastMapper at a desired update rate of 20/s\n\n",
+                kSize, kSize);
+    std::printf("%-24s %6s | %10s %10s %9s %9s %8s | %10s %9s %9s %9s %7s\n", "volume", "labels", "Q->coarse",
+                "coarse/s", "full ms", "1st ms", "PSNR", "arbor c/s", "PSNR", "vtk i/s", "PSNR", "ratio");
+    for (const fs::path &input : {head, tall}) try {
+        pipeline::Pipeline p(registry);
+        pipeline::Document d = pipeline::default_document();
+        d.input.path = input;
+        d.cut.keep = 20;
+        d.appearance.balance_visibility = false;
+        d.view.width = d.view.height = kSize;
+        p.set_document(d);
+        const auto filtered = p.run<pipeline::Stage::Filter>();
+        const auto labelled = p.run<pipeline::Stage::Labels>();
+        auto functions = p.run<pipeline::Stage::TransferFunctions>();
+        const Volume &volume = *filtered->volume;
+        const arbor_volume view = volume.view();
+        arbor_label_map map{};
+        Orbit o;
+        o.azimuth = 30;
+        o.elevation = 20;
+        arbor_camera camera = orbit_camera(volume.geometry(), o);
+        PluginInstance cpu = registry.create("org.arbor.renderer.cpu-raycast");
+        arbor_render_request r =
+            request_for(volume, view, map, labelled->labels, *functions->functions, camera);
+        uint64_t revision = 1;
+        // The first frame on a new volume: the grid, gradients, block
+        // statistics (once per volume and labels).
+        auto t0 = Clock::now();
+        render_image(cpu, r, kSize, kSize, nullptr, {}, {ARBOR_RENDER_PASS_COARSE, 0, revision});
+        const double first = ms_since(t0);
+        // 1. Flow-rate steps: the pipeline regenerates the functions, the
+        // renderer shows the coarse pass.
+        std::vector<double> step_ms;
+        for (int s = 1; s <= 6; ++s) {
+            pipeline::Appearance a = p.document().appearance;
+            a.generator.params["flow-rate"] = std::to_string(60 + 15 * s);
+            t0 = Clock::now();
+            p.set_appearance(a);
+            functions = p.run<pipeline::Stage::TransferFunctions>();
+            r.transfer_functions = &functions->functions->record();
+            render_image(cpu, r, kSize, kSize, nullptr, {}, {ARBOR_RENDER_PASS_COARSE, 0, ++revision});
+            step_ms.push_back(ms_since(t0));
+        }
+        // 2-4. Orbiting coarse; the refinement (a FULL pass) and its PSNR.
+        const Orbiting coarse = orbit(cpu, r, volume.geometry(), ARBOR_RENDER_PASS_COARSE, revision, 20);
+        std::vector<double> full_ms;
+        for (int i = 0; i < 3; ++i) {
+            t0 = Clock::now();
+            render_image(cpu, r, kSize, kSize, nullptr, {}, {ARBOR_RENDER_PASS_FULL, 0, revision});
+            full_ms.push_back(ms_since(t0));
+        }
+        // 5. One global function for both renderers.
+        const VolumeStatistics stats = compute_statistics(volume);
+        TransferFunctions global(1, 256, 4.0 * std::min({volume.geometry().spacing[0], volume.geometry().spacing[1],
+                                                        volume.geometry().spacing[2]}));
+        test::global_ramp(global, stats.min, stats.max);
+        const arbor_render_request g = test::global_request(view, global, camera);
+        PluginInstance cpu_global = registry.create("org.arbor.renderer.cpu-raycast");
+        PluginInstance vtk = registry.create("org.arbor.renderer.vtk-reference");
+        const Orbiting arbor_global = orbit(cpu_global, g, volume.geometry(), ARBOR_RENDER_PASS_COARSE, 1, 20);
+        const Orbiting vtk_global = orbit(vtk, g, volume.geometry(), ARBOR_RENDER_PASS_COARSE, 1, 20);
+        char dims[32];
+        std::snprintf(dims, sizeof dims, "%lldx%lldx%lld", static_cast<long long>(volume.geometry().dims[0]),
+                      static_cast<long long>(volume.geometry().dims[1]),
+                      static_cast<long long>(volume.geometry().dims[2]));
+        std::printf("%-24s %6u | %10.1f %10.1f %9.0f %9.0f %8.1f | %10.1f %9.1f %9.1f %9.1f %7.2f\n", dims,
+                    functions->functions->branch_count(), median(step_ms), coarse.fps, median(full_ms), first,
+                    coarse.psnr, arbor_global.fps, arbor_global.psnr, vtk_global.fps, vtk_global.psnr,
+                    arbor_global.fps / vtk_global.fps);
+    } catch (const std::exception &e) {
+        std::printf("%-24s skipped: %s\n", input.filename().c_str(), e.what());
+    }
+    std::printf("\nQ->coarse: median of 6 flow-rate steps, from the new parameter to the coarse image (ms); "
+                "coarse/s: coarse frames per second orbiting; full ms: the refining FULL pass; 1st ms: the first "
+                "coarse frame on a new volume (grid, gradients, block statistics); PSNR (dB) of the coarse image "
+                "against the full one.  Global function: frames per second orbiting and PSNR against each "
+                "renderer's own full image; ratio = Arbor / VTK.\n");
+    return 0;
+}
