@@ -653,6 +653,70 @@ private:
                 return e;
             return image.all_in_unit_range() ? std::string() : std::string("pixels outside [0, 1]");
         });
+        const auto *t2 = static_cast<const arbor_renderer_v2 *>(p_->get_interface(p_, ARBOR_INTERFACE_RENDERER_2));
+        if (!t2)
+            return;
+        arbor_render_request_v2 r2{};
+        r2.struct_size = sizeof r2;
+        r2.volume = request.volume;
+        r2.transfer_functions = request.transfer_functions;
+        r2.camera = request.camera;
+        r2.background[3] = 1.0f;
+        r2.volume_revision = r2.labels_revision = r2.transfer_functions_revision = 1;
+        r2.frame_width = r2.frame_height = 16;
+        r2.region_width = r2.region_height = 16;
+        run("renderer/2 interface", [&] {
+            return t2->struct_size >= sizeof(arbor_renderer_v2) && t2->render ? std::string()
+                                                                             : std::string("table incomplete");
+        });
+        run("renderer/2 invalid regions and passes", [&] {
+            FixtureImage image(16, 16);
+            arbor_render_request_v2 outside = r2;
+            outside.region_x = 8; // 8 + 16 > 16
+            if (auto e = expect(t2->render(p_, &outside, &image.record(), task.get()), ARBOR_ERROR_INVALID_ARGUMENT,
+                                "render(a region beyond the frame)");
+                !e.empty())
+                return e;
+            arbor_render_request_v2 mismatched = r2;
+            mismatched.frame_width = mismatched.frame_height = 32;
+            mismatched.region_width = 8; // the image is 16 wide
+            if (auto e = expect(t2->render(p_, &mismatched, &image.record(), task.get()),
+                                ARBOR_ERROR_INVALID_ARGUMENT, "render(a region unlike the image)");
+                !e.empty())
+                return e;
+            arbor_render_request_v2 unknown = r2;
+            unknown.pass = 77;
+            return expect(t2->render(p_, &unknown, &image.record(), task.get()), ARBOR_ERROR_INVALID_ARGUMENT,
+                          "render(pass 77)");
+        });
+        run("renderer/2 tiles join into the frame", [&] {
+            FixtureImage whole(16, 16);
+            // FULL only: a coarse pass may choose its rays anew at each
+            // frame (renderer.h), and the whole frame here is one frame,
+            // its tiles another.
+            for (const arbor_render_pass pass : {ARBOR_RENDER_PASS_FULL}) {
+                arbor_render_request_v2 r = r2;
+                r.pass = pass;
+                if (auto e = expect(t2->render(p_, &r, &whole.record(), task.get()), ARBOR_OK, "render(whole frame)");
+                    !e.empty())
+                    return e;
+                if (!whole.all_in_unit_range())
+                    return std::string("pixels outside [0, 1]");
+                for (uint32_t half = 0; half < 2; ++half) {
+                    FixtureImage tile(16, 8);
+                    r.region_y = 8 * half;
+                    r.region_height = 8;
+                    if (auto e = expect(t2->render(p_, &r, &tile.record(), task.get()), ARBOR_OK, "render(a tile)");
+                        !e.empty())
+                        return e;
+                    for (std::size_t i = 0; i < 16 * 8 * 4; ++i)
+                        if (std::fabs(tile.rgba()[i] - whole.rgba()[16 * 8 * 4 * half + i]) > 1e-5f)
+                            return std::string("a tile's pixels differ from the whole frame's there (pass ") +
+                                   std::to_string(pass) + ")";
+                }
+            }
+            return std::string();
+        });
     }
 
     const arbor_plugin_entry &entry_;

@@ -59,6 +59,7 @@ public:
     arbor_image &record() { return record_; }
     // True when every value is finite and inside [0, 1].
     bool all_in_unit_range() const;
+    const std::vector<float> &rgba() const { return rgba_; }
 
 private:
     std::vector<float> rgba_, depth_;

@@ -239,11 +239,17 @@ public:
         Slots visibility(static_cast<std::size_t>(arena_->max_concurrency()),
                          std::vector<double>(table_.labels(), 0.0));
         Cancellation cancel(task);
-        // The coarse pass's pixels per ray: fixed, or what reaches the rate.
-        // It changes only between whole frames, so tiles of one frame agree.
-        const bool whole = request.region_width == request.frame_width && request.region_height == request.frame_height;
-        pass.pixels = params().integer("coarse-pixels") > 0 ? static_cast<double>(params().integer("coarse-pixels"))
-                                                             : coarse_pixels_;
+        // The coarse pass's pixels per ray: fixed, or what reaches the rate
+        // judged by the frame before.  It changes only at a call whose
+        // region starts at (0, 0), the first tile of a frame: the tiles of
+        // one frame agree.
+        const bool adaptive = params().integer("coarse-pixels") == 0;
+        if (coarse && adaptive && request.region_x == 0 && request.region_y == 0 && frame_pixels_ > 0) {
+            adapt_coarse(frame_seconds_ * request.frame_width * request.frame_height / frame_pixels_,
+                         1.0 / params().number("coarse-rate"));
+            frame_seconds_ = frame_pixels_ = 0;
+        }
+        pass.pixels = adaptive ? coarse_pixels_ : static_cast<double>(params().integer("coarse-pixels"));
         const auto started = std::chrono::steady_clock::now();
         arena_->execute([&] {
             if (pass.coarse)
@@ -252,9 +258,10 @@ public:
                 render_pixels(pass, request, out, cancel, visibility);
         });
         task.throw_if_cancelled();
-        if (pass.coarse && whole && params().integer("coarse-pixels") == 0)
-            adapt_coarse(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
-                         1.0 / params().number("coarse-rate"));
+        if (coarse) {
+            frame_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            frame_pixels_ += static_cast<double>(out.width) * out.height;
+        }
         if (ARBOR_HAS_FIELD(arbor_image, out.struct_size, label_visibility_count) && out.label_visibility) {
             std::vector<double> sum(table_.labels(), 0.0);
             for (const std::vector<double> &v : visibility)
@@ -266,7 +273,7 @@ public:
     }
 
 private:
-    // After a whole coarse frame that took `seconds`: the fewest pixels per
+    // After a coarse frame that took `seconds`: the fewest pixels per
     // ray whose frames are predicted to take at most `budget` (a frame's
     // time goes with its rays, 1 / n^2).  A smoothed time, so one slow frame
     // does not make the picture jump.
@@ -628,7 +635,8 @@ private:
     uint64_t table_print_ = 0;
     double step_ = -1.0, emphasis_ = -1.0;
     double coarse_pixels_ = kCoarseStart;
-    double coarse_seconds_ = 0.0;
+    double coarse_seconds_ = 0.0;              // smoothed time of a whole coarse frame
+    double frame_seconds_ = 0, frame_pixels_ = 0; // the coarse frame being rendered, tile by tile
     std::unique_ptr<tbb::task_arena> arena_; // the pool the tiles run on (oneTBB's threads persist)
     unsigned arena_threads_ = 0;
 };

@@ -78,7 +78,10 @@ typedef struct arbor_renderer_v1 {
  * pixel, offset within the pixel and along the ray, as
  * out = (sample_index * out + sample) / (sample_index + 1).  A renderer
  * without a coarse or supersample pass renders FULL for COARSE and returns
- * ARBOR_ERROR_UNSUPPORTED for SUPERSAMPLE.
+ * ARBOR_ERROR_UNSUPPORTED for SUPERSAMPLE.  A coarse pass may choose its
+ * rays anew for each frame (from the time earlier frames took), but only at
+ * a call whose region starts at (0, 0): a host rendering a frame in tiles
+ * starts with that one, and its tiles agree.
  *
  * Revisions.  Each revision changes whenever the contents behind its
  * pointer change (and only then, for the host's cache to work): a renderer
