@@ -18,6 +18,7 @@
 // Needs X for VTK: xvfb-run -a build/bin/arbor_bench_interactive.  Prints a
 // table; not a pass/fail test.
 #include "global_ramp.hpp"
+#include "image_psnr.hpp"
 #include "plugin_fixture.hpp"
 
 #include "core/volume_statistics.hpp"
@@ -51,18 +52,6 @@ double median(std::vector<double> v)
 {
     std::sort(v.begin(), v.end());
     return v[v.size() / 2];
-}
-
-double psnr(const RenderedImage &a, const RenderedImage &b)
-{
-    double se = 0;
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < a.rgba.size(); ++i)
-        if (i % 4 != 3) {
-            se += (a.rgba[i] - b.rgba[i]) * (a.rgba[i] - b.rgba[i]);
-            ++n;
-        }
-    return se > 0 ? 10 * std::log10(static_cast<double>(n) / se) : INFINITY;
 }
 
 // The CT head with `factor` times as many slices, linear between them.
@@ -138,7 +127,7 @@ Orbiting orbit(PluginInstance &renderer, arbor_render_request r, const Geometry 
         last = frame(f, pass);
     Orbiting out;
     out.fps = frames / (ms_since(t0) / 1000.0);
-    out.psnr = psnr(last, frame(frames - 1, ARBOR_RENDER_PASS_FULL));
+    out.psnr = test::psnr(last, frame(frames - 1, ARBOR_RENDER_PASS_FULL));
     return out;
 }
 

@@ -6,6 +6,7 @@
 // converges, revisions that decide what is rebuilt, cancellation that
 // leaves old or final pixels.
 #include "plugin_fixture.hpp"
+#include "image_psnr.hpp"
 
 #include "core/cancelled.hpp"
 #include "host/rendering.hpp"
@@ -345,19 +346,6 @@ struct Interactive {
     uint64_t tf_revision = 1;
 };
 
-// Peak signal-to-noise ratio of a against b, over RGB, in dB.
-double psnr(const RenderedImage &a, const RenderedImage &b)
-{
-    double se = 0;
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < a.rgba.size(); ++i)
-        if (i % 4 != 3) {
-            se += (a.rgba[i] - b.rgba[i]) * (a.rgba[i] - b.rgba[i]);
-            ++n;
-        }
-    return se > 0 ? 10 * std::log10(n / se) : INFINITY;
-}
-
 TEST(CpuRayCaster2, OffersTheInteractiveInterface)
 {
     Interactive s;
@@ -393,7 +381,7 @@ TEST(CpuRayCaster2, TheCoarsePassIsCloseToTheFullOneAndFaster)
     Interactive s;
     const RenderedImage full = s.render({}, 256, 256);
     const RenderedImage coarse = s.render({ARBOR_RENDER_PASS_COARSE}, 256, 256);
-    const double db = psnr(coarse, full);
+    const double db = test::psnr(coarse, full);
     EXPECT_GT(db, 24.0) << "coarse against full: " << db << " dB";
     EXPECT_LT(db, 80.0) << "the coarse pass is the full one";
     // Visibility is measured on the coarse pass too, scaled to the frame.
@@ -434,7 +422,7 @@ TEST(CpuRayCaster2, OnALargeVolumeTheCoarsePassSamplesHalfResolutionAndStaysClos
     }
     const RenderedImage full = s.render({}, 256, 256);
     const RenderedImage coarse = s.render({ARBOR_RENDER_PASS_COARSE}, 256, 256);
-    const double db = psnr(coarse, full);
+    const double db = test::psnr(coarse, full);
     // Lower than at full resolution (hard-edged step functions, a voxel
     // per 1.5 pixels); a misplaced half grid (by half a voxel) gives 15.
     EXPECT_GT(db, 20.0) << "coarse against full: " << db << " dB";
@@ -496,7 +484,7 @@ TEST(CpuRayCaster2, SupersamplingConvergesAndBlendsOnlyWhatIsThere)
     }
     EXPECT_LT(change[7], 0.5 * change[0]) << "pass 8 moved the image as much as pass 1";
     // The refined image stays the same picture: close to the single sample.
-    EXPECT_GT(psnr(image, once), 25.0);
+    EXPECT_GT(test::psnr(image, once), 25.0);
     EXPECT_EQ(image.depth, once.depth); // depth is the full pass's
     for (float x : image.rgba)
         ASSERT_TRUE(x >= 0.0f && x <= 1.0f);
@@ -514,7 +502,7 @@ TEST(CpuRayCaster2, RevisionsDecideWhatIsRebuilt)
     // A new revision: the new colours.
     ++s.tf_revision;
     const RenderedImage changed = s.render();
-    EXPECT_LT(psnr(changed, a), 30.0);
+    EXPECT_LT(test::psnr(changed, a), 30.0);
     // Revision 0 (unknown): contents decide.
     s.tf_revision = 0;
     EXPECT_EQ(s.render().rgba, changed.rgba);

@@ -3,6 +3,7 @@
 // PSNR floor.  VTK renders through X: without a display these tests are
 // skipped (ctest runs under xvfb-run, see README).
 #include "global_ramp.hpp"
+#include "image_psnr.hpp"
 #include "plugin_fixture.hpp"
 
 #include "io/phantom.hpp"
@@ -19,19 +20,6 @@ namespace arbor {
 namespace {
 
 constexpr uint32_t kSize = 192;
-
-double psnr(const RenderedImage &a, const RenderedImage &b)
-{
-    double se = 0;
-    for (std::size_t p = 0; p < std::size_t{a.width} * a.height; ++p)
-        for (int c = 0; c < 3; ++c) {
-            // Both composited over the black background.
-            const double d = a.rgba[4 * p + c] - b.rgba[4 * p + c];
-            se += d * d;
-        }
-    const double mse = se / (3.0 * a.width * a.height);
-    return mse > 0 ? 10.0 * std::log10(1.0 / mse) : 99.0;
-}
 
 TEST(VtkReference, CpuRayCasterAgreesWithVtkOnAGlobalTransferFunction)
 {
@@ -58,7 +46,7 @@ TEST(VtkReference, CpuRayCasterAgreesWithVtkOnAGlobalTransferFunction)
             test::plain_opacity(cpu);
             const RenderedImage a = render_image(cpu, r, kSize, kSize);
             const RenderedImage b = render_image(vtk, r, kSize, kSize);
-            const double db = psnr(a, b);
+            const double db = test::psnr(a, b);
             std::printf("PSNR CPU vs VTK, shading %s, azimuth %.0f: %.1f dB\n", shading ? "on" : "off", azimuth, db);
             // Unshaded, sampling, classification and compositing must agree
             // (measured 35 dB).  Shaded, the lighting models differ: VTK
