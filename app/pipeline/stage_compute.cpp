@@ -1,4 +1,6 @@
 #include "stage_compute.hpp"
+
+#include "render_scene.hpp"
 #include "transfer_function_file.hpp"
 #include "tree_cache.hpp"
 
@@ -386,24 +388,11 @@ std::shared_ptr<const void> render(StageContext &c)
     auto r = std::make_shared<RenderResult>();
     r->renderer = v.renderer;
     PluginSlot::Lease renderer = c.plugins.lease(v.renderer, &c.job);
-    const arbor_volume view = volume.view();
-    arbor_label_map map{};
-    map.struct_size = sizeof map;
-    map.label_count = tf->functions->branch_count();
-    for (int a = 0; a < 3; ++a)
-        map.dims[a] = volume.geometry().dims[a];
-    map.labels = labels->labels.data();
-    arbor_render_request request{};
-    request.struct_size = sizeof request;
-    request.volume = &view;
-    request.labels = &map;
-    for (std::size_t i = 0; i < 4; ++i)
-        request.background[i] = static_cast<float>(v.background[i]);
+    RenderScene scene(*filtered, *labels, tf->functions->branch_count(), v.background);
+    arbor_render_request &request = scene.request;
     // Previews see a clear background, so opacity is what was seen.
     arbor_render_request preview_request = request;
     std::fill(std::begin(preview_request.background), std::end(preview_request.background), 0.0f);
-    request.volume_revision = preview_request.volume_revision = filtered->revision;
-    request.labels_revision = preview_request.labels_revision = labels->revision;
     const auto preview = [&](const TransferFunctions &functions, const arbor_camera &camera, uint32_t w,
                              uint32_t h) {
         arbor_render_request p = preview_request;

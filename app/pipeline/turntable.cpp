@@ -1,5 +1,7 @@
 #include "turntable.hpp"
 
+#include "render_scene.hpp"
+
 #include "core/cancelled.hpp"
 #include "core/stopwatch.hpp"
 #include "host/rendering.hpp"
@@ -43,22 +45,9 @@ void render_turntable(Pipeline &pipeline, const TurntableOptions &options,
     if (options.quality != TurntableQuality::full && !renders_passes(renderer))
         throw std::invalid_argument(renderer.id() + " offers arbor.renderer/1 only: no " +
                                     quality_name(options.quality) + " passes");
-    const arbor_volume view = volume.view();
-    arbor_label_map map{};
-    map.struct_size = sizeof map;
-    map.label_count = render->functions->branch_count();
-    for (int a = 0; a < 3; ++a)
-        map.dims[a] = volume.geometry().dims[a];
-    map.labels = labels->labels.data();
-    arbor_render_request request{};
-    request.struct_size = sizeof request;
-    request.volume = &view;
-    request.labels = &map;
+    RenderScene scene(*filtered, *labels, render->functions->branch_count(), v.background);
+    arbor_render_request &request = scene.request;
     request.transfer_functions = &render->functions->record();
-    for (std::size_t c = 0; c < 4; ++c)
-        request.background[c] = static_cast<float>(v.background[c]);
-    request.volume_revision = 1;
-    request.labels_revision = 1;
     // The render's framing, as a zoom about the volume's centre.
     Orbit orbit = v.orbit;
     const double azimuth0 = render->viewpoint ? render->viewpoint->azimuth : v.orbit.azimuth;
