@@ -1,10 +1,12 @@
 #include "pipeline.hpp"
 
+#include "render_scene.hpp"
 #include "stage_compute.hpp"
 
 #include "core/cancelled.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace arbor::pipeline {
 
@@ -227,6 +229,47 @@ void Pipeline::reap_locked()
             ++it;
         }
     }
+}
+
+void Pipeline::render_pass(RenderedImage &frame, const FramePass &pass, std::stop_token stop)
+{
+    const auto tf = run<Stage::TransferFunctions>();
+    const auto labels = run<Stage::Labels>();
+    const auto filtered = run<Stage::Filter>();
+    const bool current = is_current(Stage::Render);
+    const auto last = latest<Stage::Render>();
+    const Document d = document();
+    throw_if_stopped(stop);
+    std::shared_ptr<const TransferFunctions> functions = tf->functions;
+    if (current)
+        functions = last->functions;
+    else if (last && last->balance && last->balance->scale.size() == functions->branch_count())
+        functions = functions->with_optical_depth(last->balance->scale);
+    arbor_camera camera;
+    if (current) {
+        camera = last->camera;
+    } else {
+        Orbit orbit = d.view.orbit;
+        if (d.view.auto_view && last && last->viewpoint) {
+            orbit.azimuth = last->viewpoint->azimuth;
+            orbit.elevation = last->viewpoint->elevation;
+        }
+        orbit.zoom = (last && last->framing ? last->framing->scale : 1.0) * (orbit.zoom > 0 ? orbit.zoom : 1.0);
+        camera = orbit_camera(filtered->volume->geometry(), orbit);
+    }
+    RenderScene scene(*filtered, *labels, functions->branch_count(), d.view.background);
+    scene.request.transfer_functions = &functions->record();
+    scene.request.camera = &camera;
+    Slot &slot = *slots_[index_of(Stage::Render)];
+    std::lock_guard busy(slot.busy);
+    PluginSlot::Lease renderer = slot.plugins.lease(d.view.renderer, nullptr);
+    if (frame.width != d.view.width || frame.height != d.view.height || pass.pass != ARBOR_RENDER_PASS_SUPERSAMPLE) {
+        frame.width = d.view.width;
+        frame.height = d.view.height;
+        frame.rgba.assign(std::size_t{frame.width} * frame.height * 4, 0.0f);
+        frame.depth.assign(std::size_t{frame.width} * frame.height, std::numeric_limits<float>::infinity());
+    }
+    render_region(*renderer, scene.request, frame, {}, pass, nullptr, std::move(stop));
 }
 
 std::shared_ptr<const void> Pipeline::latest_result(Stage stage) const

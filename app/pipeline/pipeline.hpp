@@ -93,6 +93,17 @@ public:
     std::vector<std::shared_ptr<Job>> active_jobs() const;
     void cancel_all();
 
+    // One pass of the document's view through the render stage's own
+    // renderer (it waits while a render job holds it), for a front that
+    // refines progressively: no second renderer keeps a second copy of the
+    // volume.  The transfer functions are the document's (run if stale),
+    // scaled by the latest render's balance when it balanced the same
+    // branches; the camera is the latest render's when that render is
+    // current, else the document's orbit zoomed by the latest framing.
+    // `frame` is resized to the view (and must hold the previous pass for
+    // SUPERSAMPLE).  Throws Cancelled when stopped.
+    void render_pass(RenderedImage &frame, const FramePass &pass, std::stop_token stop = {});
+
     // Per stage: how many times it was computed (not served from its cache).
     std::array<uint64_t, kStageCount> stage_runs() const;
 

@@ -1,0 +1,150 @@
+#include "progressive_view.hpp"
+
+#include "core/cancelled.hpp"
+#include "core/stopwatch.hpp"
+
+namespace arbor::pipeline {
+
+namespace {
+
+// COARSE < FULL < SUPERSAMPLE 1 < SUPERSAMPLE 2 ...
+uint32_t rank(arbor_render_pass pass, uint32_t samples)
+{
+    return pass == ARBOR_RENDER_PASS_COARSE ? 0 : pass == ARBOR_RENDER_PASS_FULL ? 1 : 1 + samples;
+}
+
+} // namespace
+
+ProgressiveView::ProgressiveView(Pipeline &pipeline, Options options)
+    : pipeline_(pipeline), options_(options), worker_([this] { loop(); })
+{
+}
+
+ProgressiveView::~ProgressiveView()
+{
+    {
+        std::lock_guard lock(mutex_);
+        quit_ = true;
+        rendering_.request_stop();
+    }
+    changed_.notify_all();
+    worker_.join();
+}
+
+uint64_t ProgressiveView::touch()
+{
+    std::lock_guard lock(mutex_);
+    last_touch_ = std::chrono::steady_clock::now();
+    rendering_.request_stop(); // the pass in flight answers an older touch
+    const uint64_t n = ++touches_;
+    changed_.notify_all();
+    return n;
+}
+
+std::shared_ptr<const ProgressiveView::Frame> ProgressiveView::latest() const
+{
+    std::lock_guard lock(mutex_);
+    return latest_;
+}
+
+std::string ProgressiveView::error() const
+{
+    std::lock_guard lock(mutex_);
+    return error_;
+}
+
+std::shared_ptr<const ProgressiveView::Frame> ProgressiveView::wait_for(uint64_t touch, arbor_render_pass pass,
+                                                                        uint32_t samples,
+                                                                        std::chrono::milliseconds timeout) const
+{
+    std::unique_lock lock(mutex_);
+    const bool ok = changed_.wait_for(lock, timeout, [&] {
+        return latest_ && latest_->touch >= touch &&
+               (latest_->touch > touch || rank(latest_->pass, latest_->samples) >= rank(pass, samples));
+    });
+    return ok ? latest_ : nullptr;
+}
+
+void ProgressiveView::publish(std::shared_ptr<const Frame> frame)
+{
+    {
+        std::lock_guard lock(mutex_);
+        if (frame->touch != touches_)
+            return; // answered a touch that has been overtaken
+        latest_ = std::move(frame);
+        error_.clear();
+    }
+    changed_.notify_all();
+}
+
+void ProgressiveView::loop()
+{
+    uint64_t done = 0;            // the touch the latest frame answers
+    uint32_t refinement = 0;      // passes after the coarse one for it: 1 full, then supersamples
+    RenderedImage image;
+    for (;;) {
+        std::stop_token stop;
+        uint64_t touch = 0;
+        bool coarse = false;
+        {
+            std::unique_lock lock(mutex_);
+            for (;;) {
+                if (quit_)
+                    return;
+                if (touches_ > done) {
+                    coarse = true;
+                    break;
+                }
+                const auto ready = last_touch_ + options_.idle;
+                if (touches_ > 0 && refinement < 1 + options_.supersamples) {
+                    if (std::chrono::steady_clock::now() >= ready)
+                        break;
+                    changed_.wait_until(lock, ready);
+                } else {
+                    changed_.wait(lock);
+                }
+            }
+            touch = touches_;
+            rendering_ = std::stop_source();
+            stop = rendering_.get_token();
+        }
+        auto frame = std::make_shared<Frame>();
+        frame->touch = touch;
+        Stopwatch watch;
+        try {
+            if (coarse) {
+                frame->pass = ARBOR_RENDER_PASS_COARSE;
+                pipeline_.render_pass(image, {ARBOR_RENDER_PASS_COARSE, 0, 0}, stop);
+                done = touch;
+                refinement = 0;
+            } else if (refinement == 0) {
+                // The pipeline's render: balanced and framed for what is shown.
+                const std::shared_ptr<Job> job = pipeline_.request(Stage::Render);
+                std::stop_callback cancel(stop, [&] { job->cancel(); });
+                const auto render = std::static_pointer_cast<const RenderResult>(job->wait(stop));
+                image = render->image;
+                frame->pass = ARBOR_RENDER_PASS_FULL;
+                refinement = 1;
+            } else {
+                frame->pass = ARBOR_RENDER_PASS_SUPERSAMPLE;
+                frame->samples = refinement;
+                pipeline_.render_pass(image, {ARBOR_RENDER_PASS_SUPERSAMPLE, refinement, 0}, stop);
+                ++refinement;
+            }
+        } catch (const Cancelled &) {
+            continue; // a newer touch, or the end
+        } catch (const std::exception &e) {
+            std::lock_guard lock(mutex_);
+            error_ = e.what();
+            done = touch;
+            refinement = 1 + options_.supersamples; // nothing more to try until the next touch
+            continue;
+        }
+        frame->seconds = watch.lap();
+        frame->image = image;
+        frame->samples = frame->pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? frame->samples : 0;
+        publish(std::move(frame));
+    }
+}
+
+} // namespace arbor::pipeline

@@ -1,0 +1,69 @@
+// progressive_view.hpp - how a front (the workstation's viewport) gets
+// images while the user drags a slider or orbits: after each touch() a
+// coarse frame at once; once no touch has come for `idle` (150 ms), the
+// pipeline's full render (balanced and framed for what is now shown),
+// then supersample passes while the user stays idle.  A touch cancels
+// whatever is being rendered; frames are published with the touch they
+// answer, so a front never shows an older answer over a newer one.
+#pragma once
+
+#include "pipeline.hpp"
+
+#include <chrono>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+namespace arbor::pipeline {
+
+class ProgressiveView {
+public:
+    struct Options {
+        std::chrono::milliseconds idle{150};
+        uint32_t supersamples = 4; // passes after the full frame; 0: none
+    };
+    struct Frame {
+        RenderedImage image;
+        arbor_render_pass pass = ARBOR_RENDER_PASS_COARSE;
+        uint32_t samples = 0; // SUPERSAMPLE passes blended in
+        uint64_t touch = 0;   // the touch it answers
+        double seconds = 0;   // to render it
+    };
+
+    ProgressiveView(Pipeline &pipeline, Options options);
+    explicit ProgressiveView(Pipeline &pipeline) : ProgressiveView(pipeline, Options{}) {}
+    ~ProgressiveView(); // cancels what is being rendered and waits for it
+    ProgressiveView(const ProgressiveView &) = delete;
+    ProgressiveView &operator=(const ProgressiveView &) = delete;
+
+    // The document changed (set it on the pipeline first): a coarse frame
+    // now, refinement once the user is idle.  Returns the touch's number.
+    uint64_t touch();
+    std::shared_ptr<const Frame> latest() const;
+    // The latest frame once it answers touch `touch` at `pass` or better
+    // (COARSE < FULL < SUPERSAMPLE with `samples` passes); nullptr on
+    // timeout.
+    std::shared_ptr<const Frame> wait_for(uint64_t touch, arbor_render_pass pass, uint32_t samples,
+                                          std::chrono::milliseconds timeout) const;
+    // What went wrong in the last attempt ("" when nothing).
+    std::string error() const;
+
+private:
+    void loop();
+    void publish(std::shared_ptr<const Frame> frame);
+
+    Pipeline &pipeline_;
+    Options options_;
+    mutable std::mutex mutex_;
+    mutable std::condition_variable changed_;
+    uint64_t touches_ = 0;
+    std::chrono::steady_clock::time_point last_touch_;
+    std::stop_source rendering_; // of the pass in flight
+    bool quit_ = false;
+    std::shared_ptr<const Frame> latest_;
+    std::string error_;
+    std::thread worker_;
+};
+
+} // namespace arbor::pipeline
