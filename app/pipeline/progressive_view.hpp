@@ -4,7 +4,10 @@
 // pipeline's full render (balanced and framed for what is now shown),
 // then supersample passes while the user stays idle.  A touch cancels
 // whatever is being rendered; frames are published with the touch they
-// answer, so a front never shows an older answer over a newer one.
+// answer, so a front never shows an older answer over a newer one.  The
+// pipeline must outlive the view.  A touch does not cancel the stages
+// before the render (a new tree after a filter change is computed to the
+// end); it cancels the pass and the full render.
 #pragma once
 
 #include "pipeline.hpp"
