@@ -142,7 +142,6 @@ void ProgressiveView::loop()
         }
         frame->seconds = watch.lap();
         frame->image = image;
-        frame->samples = frame->pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? frame->samples : 0;
         publish(std::move(frame));
     }
 }

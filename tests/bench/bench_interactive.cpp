@@ -26,6 +26,7 @@
 #include "host/rendering.hpp"
 #include "io/nrrd_writer.hpp"
 #include "pipeline/pipeline.hpp"
+#include "pipeline/render_scene.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -78,27 +79,6 @@ fs::path resampled(const fs::path &dicom, int factor, const fs::path &out)
     }
     io::write_nrrd(r, out);
     return out;
-}
-
-arbor_render_request request_for(const Volume &volume, const arbor_volume &view, arbor_label_map &map,
-                                 const std::vector<uint32_t> &labels, const TransferFunctions &tf,
-                                 const arbor_camera &camera)
-{
-    map = {};
-    map.struct_size = sizeof map;
-    map.label_count = tf.branch_count();
-    for (int a = 0; a < 3; ++a)
-        map.dims[a] = volume.geometry().dims[a];
-    map.labels = labels.data();
-    arbor_render_request r{};
-    r.struct_size = sizeof r;
-    r.volume = &view;
-    r.labels = &map;
-    r.transfer_functions = &tf.record();
-    r.camera = &camera;
-    r.background[3] = 1.0f;
-    r.volume_revision = r.labels_revision = 1;
-    return r;
 }
 
 struct Orbiting {
@@ -165,14 +145,16 @@ int main()
         auto functions = p.run<pipeline::Stage::TransferFunctions>();
         const Volume &volume = *filtered->volume;
         const arbor_volume view = volume.view();
-        arbor_label_map map{};
         Orbit o;
         o.azimuth = 30;
         o.elevation = 20;
         arbor_camera camera = orbit_camera(volume.geometry(), o);
         PluginInstance cpu = registry.create("org.arbor.renderer.cpu-raycast");
-        arbor_render_request r =
-            request_for(volume, view, map, labelled->labels, *functions->functions, camera);
+        // The request as the render stage makes it.
+        pipeline::RenderScene scene(*filtered, *labelled, functions->functions->branch_count(), d.view.background);
+        arbor_render_request r = scene.request;
+        r.transfer_functions = &functions->functions->record();
+        r.camera = &camera;
         uint64_t revision = 1;
         // The first frame on a new volume: the grid, gradients, block
         // statistics (once per volume and labels).
