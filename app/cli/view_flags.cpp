@@ -1,10 +1,14 @@
 #include "view_flags.hpp"
 
+#include "host/host_services.hpp"
+
 namespace arbor::cli {
+
+using pipeline::short_name;
 
 void ViewFlags::add_to(CLI::App &command, Context &context)
 {
-    renderer_option_ = command.add_option("--renderer", renderer_, "Renderer plugin (id or last part; default cpu-raycast)")
+    renderer_option_ = command.add_option("--renderer", renderer_, "Renderer plugin (id or last part; default auto: the OpenGL ray caster on graphics hardware, else the CPU ray caster)")
                            ->group("Rendering");
     width_option_ = command.add_option("--width", width_, "Image width in pixels (default 512)")
                         ->check(CLI::Range(16, 8192))->group("Rendering");
@@ -44,10 +48,14 @@ void ViewFlags::add_to(CLI::App &command, Context &context)
 
 void ViewFlags::apply(pipeline::ViewChoice &view, const pipeline::PluginCatalog &catalog) const
 {
+    const std::string name = renderer_option_->count() ? renderer_ : view.renderer.id;
     if (renderer_option_->count())
         view.renderer = {catalog.find(ARBOR_KIND_RENDERER, renderer_), "", {}};
     else if (!view.renderer.id.empty())
         view.renderer.id = catalog.find(ARBOR_KIND_RENDERER, view.renderer.id);
+    if (name == "auto") // say which and why
+        log_message(ARBOR_LOG_INFO, "", "renderer " + short_name(view.renderer.id) + ": " +
+                                            catalog.renderer_choice().reason);
     flags_.apply(view.renderer);
     if (width_option_->count())
         view.width = width_;

@@ -45,6 +45,24 @@ bool renders_passes(const PluginInstance &renderer)
     return renderer.get()->get_interface(renderer.get(), ARBOR_INTERFACE_RENDERER_2) != nullptr;
 }
 
+RenderDevice render_device(const PluginInstance &renderer)
+{
+    RenderDevice device;
+    const auto *table = static_cast<const arbor_render_device_v1 *>(
+        renderer.get()->get_interface(renderer.get(), ARBOR_INTERFACE_RENDER_DEVICE));
+    if (!table || table->struct_size < sizeof(arbor_render_device_v1) || !table->describe)
+        return device;
+    arbor_render_device d{};
+    d.struct_size = sizeof d;
+    if (table->describe(renderer.get(), &d) != ARBOR_OK)
+        return device;
+    if (d.kind == ARBOR_DEVICE_CPU || d.kind == ARBOR_DEVICE_GPU || d.kind == ARBOR_DEVICE_SOFTWARE_GPU)
+        device.kind = d.kind;
+    if (d.name)
+        device.name = std::string(d.name).substr(0, 200);
+    return device;
+}
+
 void render_region(PluginInstance &renderer, const arbor_render_request &request, RenderedImage &frame,
                    Region region, const FramePass &pass, ProgressSink *progress, std::stop_token stop)
 {

@@ -41,6 +41,14 @@ void render_region(PluginInstance &renderer, const arbor_render_request &request
 // supersample passes).
 bool renders_passes(const PluginInstance &renderer);
 
+// What a renderer renders on (arbor.render-device/1); a renderer that does
+// not say counts as rendering on the CPU.
+struct RenderDevice {
+    arbor_device_kind kind = ARBOR_DEVICE_CPU;
+    std::string name; // "" when the renderer does not say
+};
+RenderDevice render_device(const PluginInstance &renderer);
+
 // A camera orbiting the volume's centre.  Azimuth 0, elevation 0 looks at
 // the patient's face (from anterior, superior up); azimuth turns towards the
 // patient's left, elevation raises the camera towards superior.  Zoom 1

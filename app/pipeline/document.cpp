@@ -14,7 +14,7 @@ Document default_document()
     d.appearance.depictor.id = "inclusion";
     d.appearance.generator.id = "residue-flow";
     d.appearance.legend.id = "neighbour";
-    d.view.renderer.id = "cpu-raycast";
+    d.view.renderer.id = "auto"; // PluginCatalog::renderer_choice
     return d;
 }
 

@@ -21,6 +21,8 @@ std::string short_name(const std::string &id)
 
 std::string PluginCatalog::find(std::string_view kind, const std::string &name) const
 {
+    if (kind == ARBOR_KIND_RENDERER && name == "auto")
+        return renderer_choice().id;
     const std::vector<const PluginInfo *> plugins = registry_.plugins_of_kind(kind);
     std::vector<std::string> by_suffix;
     for (const PluginInfo *p : plugins) {

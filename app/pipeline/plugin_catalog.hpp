@@ -61,12 +61,24 @@ public:
     // The parameter descriptions of a plugin, valid for the catalog's life.
     std::vector<const arbor_param_desc *> descriptions(const std::string &id) const;
 
+    // What the renderer name "auto" (the default) stands for, and why: the
+    // OpenGL ray caster when its OpenGL runs on graphics hardware, else the
+    // CPU ray caster (faster than OpenGL emulated on the CPU, as Mesa's
+    // llvmpipe is).  Probed once per catalog.
+    struct RendererChoice {
+        std::string id;
+        std::string reason; // one sentence, e.g. "the OpenGL ray caster would run on llvmpipe, ..."
+    };
+    const RendererChoice &renderer_choice() const;
+
 private:
     const PluginInstance &prototype(const std::string &id) const; // under mutex_
 
     const PluginRegistry &registry_;
     mutable std::mutex mutex_;
     mutable std::map<std::string, std::unique_ptr<PluginInstance>> prototypes_;
+    mutable std::once_flag choice_once_;
+    mutable RendererChoice choice_;
 };
 
 // How messages name a kind: "simplifier", "transfer-function generator"...

@@ -14,6 +14,9 @@
 // voxels).
 #include "cancellation.hpp"
 #include "classification.hpp"
+#include "coarse_lattice.hpp"
+#include "optical_model.hpp"
+#include "ray_geometry.hpp"
 #include "voxel_grid.hpp"
 
 #include <arbor/sdk/renderer.hpp>
@@ -53,69 +56,16 @@ const arbor_plugin_descriptor kRayCasterDescriptor = {
 
 namespace {
 
-struct Ray {
-    Vec3 origin, direction; // LPS mm; direction unit length
-};
-
-// Pixel (x, y) -> ray, row 0 at the top.
-class Camera {
-public:
-    Camera(const arbor_camera &c, uint32_t width, uint32_t height) : c_(c)
-    {
-        f_ = normalize({c.focal_point[0] - c.position[0], c.focal_point[1] - c.position[1],
-                        c.focal_point[2] - c.position[2]});
-        r_ = normalize(cross(f_, {c.view_up[0], c.view_up[1], c.view_up[2]}));
-        if (!(std::hypot(r_[0], r_[1], r_[2]) > 0.5)) // view-up along the view direction
-            r_ = normalize(cross(f_, std::fabs(f_[2]) < 0.9 ? Vec3{0, 0, 1} : Vec3{0, 1, 0}));
-        u_ = cross(r_, f_);
-        aspect_ = static_cast<double>(width) / height;
-        width_ = width;
-        height_ = height;
-        half_ = c.projection == ARBOR_PROJECTION_PERSPECTIVE ? std::tan(c.view_angle * M_PI / 360.0) : c.parallel_scale;
-    }
-
-    // The ray through frame position (px, py) in pixels: pixel (x, y)
-    // spans [x, x + 1) x [y, y + 1), its centre is (x + 0.5, y + 0.5).
-    Ray ray(double px, double py) const
-    {
-        const double sx = (2.0 * px / width_ - 1.0) * aspect_ * half_;
-        const double sy = (1.0 - 2.0 * py / height_) * half_;
-        const Vec3 p{c_.position[0], c_.position[1], c_.position[2]};
-        if (c_.projection == ARBOR_PROJECTION_PERSPECTIVE)
-            return {p, normalize({f_[0] + sx * r_[0] + sy * u_[0], f_[1] + sx * r_[1] + sy * u_[1],
-                                  f_[2] + sx * r_[2] + sy * u_[2]})};
-        return {{p[0] + sx * r_[0] + sy * u_[0], p[1] + sx * r_[1] + sy * u_[1], p[2] + sx * r_[2] + sy * u_[2]}, f_};
-    }
-
-    static Vec3 cross(const Vec3 &a, const Vec3 &b)
-    {
-        return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    }
-    static Vec3 normalize(const Vec3 &v)
-    {
-        const double l = std::hypot(v[0], v[1], v[2]);
-        return l > 0 ? Vec3{v[0] / l, v[1] / l, v[2] / l} : v;
-    }
-
-private:
-    arbor_camera c_;
-    Vec3 f_{}, r_{}, u_{};
-    double aspect_ = 1, half_ = 1;
-    uint32_t width_ = 1, height_ = 1;
-};
-
-struct Shading {
-    bool enabled = true;
-    float ambient = 0.3f, diffuse = 0.7f;
-    // specular * ndl^shininess for ndl = i / 256: no pow() per sample.
-    std::array<float, 258> highlight{};
-
-    void tabulate(float specular, float shininess)
-    {
-        for (std::size_t i = 0; i < highlight.size(); ++i)
-            highlight[i] = specular * std::pow(std::min(1.0f, i / 256.0f), shininess);
-    }
-};
+// The CPU ray caster's own parameters after the shared ones.
+std::vector<sdk::ParamSpec> with_cpu_params(std::vector<sdk::ParamSpec> specs)
+{
+    specs.push_back(sdk::ParamSpec::real("ambient-occlusion", "Ambient occlusion", 0.0, 0.0, 1.0)
+                        .group("Shading")
+                        .hint("Darken samples by how filled with opacity the space around them is (local ambient "
+                              "occlusion): crevices and folds read without shadows; 0 turns it off"));
+    specs.push_back(sdk::ParamSpec::integer("threads", "Threads", 0, 0, 256).hint("Worker threads; 0 uses every core"));
+    return specs;
+}
 
 // FNV-1a over the bytes of the transfer functions: the occupancy grid is
 // rebuilt when they change.
@@ -134,27 +84,9 @@ uint64_t fingerprint(const arbor_tf_set &tf, double step)
     return h;
 }
 
-// One ray's result.
-struct Sample {
-    float rgba[4];
-    float depth;
-};
-
 // Where the passes put their rays.
-// Pixels per coarse ray (along each side): 4 until timings say otherwise,
-// then one of 2, 2.5, ... 8.
-constexpr double kCoarseStart = 4, kCoarseMin = 2, kCoarseMax = 8, kCoarseStepBy = 0.5;
-constexpr double kCoarseStep = 2.0;    // at this many times the full step
 constexpr uint32_t kRows = 8;          // rows per tile of work
 constexpr int64_t kHalfFrom = int64_t{1} << 22; // voxels from which the coarse pass samples a half-resolution grid
-
-// The R2 sequence (Roberts): well spread offsets within a pixel for the
-// supersample passes.
-std::array<double, 2> subpixel(uint32_t n)
-{
-    constexpr double g = 1.32471795724474602596, a1 = 1.0 / g, a2 = 1.0 / (g * g);
-    return {std::fmod(0.5 + a1 * n, 1.0), std::fmod(0.5 + a2 * n, 1.0)};
-}
 
 // Per worker of the arena: what its rays contributed to each label.
 using Slots = std::vector<std::vector<double>>;
@@ -168,50 +100,15 @@ class RayCaster final : public sdk::Renderer {
 public:
     explicit RayCaster(const arbor_host *host)
         : Renderer(kRayCasterDescriptor, host,
-                   {sdk::ParamSpec::real("sample-distance", "Sample distance", 0.5, 0.01, 10.0)
-                        .unit("voxels")
-                        .hint("Distance between samples along a ray, in units of the smallest voxel spacing"),
-                    sdk::ParamSpec::boolean("shading", "Shading", true)
-                        .hint("Blinn-Phong shading from the gradient, lit from the camera"),
-                    sdk::ParamSpec::real("ambient", "Ambient", 0.3, 0.0, 1.0).group("Shading"),
-                    sdk::ParamSpec::real("diffuse", "Diffuse", 0.7, 0.0, 1.0).group("Shading"),
-                    sdk::ParamSpec::real("specular", "Specular", 0.25, 0.0, 1.0).group("Shading"),
-                    sdk::ParamSpec::real("shininess", "Shininess", 24.0, 1.0, 256.0).group("Shading"),
-                    sdk::ParamSpec::real("boundary-emphasis", "Boundary emphasis", 0.8, 0.0, 1.0)
-                        .hint("Scale opacity by the steepness of the field (gradient magnitude), so structures read "
-                              "as surfaces and homogeneous interiors thin out; 0 turns it off"),
-                    sdk::ParamSpec::real("ambient-occlusion", "Ambient occlusion", 0.0, 0.0, 1.0)
-                        .group("Shading")
-                        .hint("Darken samples by how filled with opacity the space around them is (local ambient "
-                              "occlusion): crevices and folds read without shadows; 0 turns it off"),
-                    sdk::ParamSpec::real("termination", "Early termination opacity", 0.99, 0.5, 1.0)
-                        .hint("A ray stops once its accumulated opacity reaches this"),
-                    sdk::ParamSpec::boolean("jitter", "Jitter", true)
-                        .hint("Offset each ray's first sample by a per-pixel fraction of a step: noise instead "
-                              "of wood-grain rings"),
-                    sdk::ParamSpec::integer("threads", "Threads", 0, 0, 256)
-                        .hint("Worker threads; 0 uses every core"),
-                    sdk::ParamSpec::real("coarse-rate", "Coarse frame rate", 22.0, 1.0, 240.0)
-                        .unit("frames/s")
-                        .group("Interaction")
-                        .hint("The coarse pass (while the user drags) chooses how many pixels share a ray, from "
-                              "2 x 2 to 8 x 8 in steps of half a pixel, to reach this rate, from the time its last "
-                              "whole frames took"),
-                    sdk::ParamSpec::integer("coarse-pixels", "Coarse pixels per ray", 0, 0, 16)
-                        .group("Interaction")
-                        .hint("A fixed n: one coarse ray per n x n pixels; 0 chooses n from the coarse frame rate")},
-                   Interface::v2)
+                   with_cpu_params(optical_model_params()), Interface::v2)
     {
+        set_device(ARBOR_DEVICE_CPU, std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " CPU threads");
     }
 
     void render_region(const arbor_render_request_v2 &request, arbor_image &out, const sdk::Task &task) override
     {
         const VoxelGrid &g = prepare(request, task);
-        Shading shading;
-        shading.enabled = params().flag("shading");
-        shading.ambient = static_cast<float>(params().number("ambient"));
-        shading.diffuse = static_cast<float>(params().number("diffuse"));
-        shading.tabulate(static_cast<float>(params().number("specular")), static_cast<float>(params().number("shininess")));
+        const Shading shading = Shading::from(params());
         Pass pass;
         const bool coarse = request.pass == ARBOR_RENDER_PASS_COARSE;
         const bool half = coarse && !half_.value.empty();
@@ -239,17 +136,9 @@ public:
         Slots visibility(static_cast<std::size_t>(arena_->max_concurrency()),
                          std::vector<double>(table_.labels(), 0.0));
         Cancellation cancel(task);
-        // The coarse pass's pixels per ray: fixed, or what reaches the rate
-        // judged by the frame before.  It changes only at a call whose
-        // region starts at (0, 0), the first tile of a frame: the tiles of
-        // one frame agree.
-        const bool adaptive = params().integer("coarse-pixels") == 0;
-        if (coarse && adaptive && request.region_x == 0 && request.region_y == 0 && frame_pixels_ > 0) {
-            adapt_coarse(frame_seconds_ * request.frame_width * request.frame_height / frame_pixels_,
-                         1.0 / params().number("coarse-rate"));
-            frame_seconds_ = frame_pixels_ = 0;
-        }
-        pass.pixels = adaptive ? coarse_pixels_ : static_cast<double>(params().integer("coarse-pixels"));
+        if (coarse)
+            pass.pixels = coarse_rate_.pixels_for(request, params().number("coarse-rate"),
+                                                  static_cast<double>(params().integer("coarse-pixels")));
         const auto started = std::chrono::steady_clock::now();
         arena_->execute([&] {
             if (pass.coarse)
@@ -258,10 +147,9 @@ public:
                 render_pixels(pass, request, out, cancel, visibility);
         });
         task.throw_if_cancelled();
-        if (coarse) {
-            frame_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-            frame_pixels_ += static_cast<double>(out.width) * out.height;
-        }
+        if (coarse)
+            coarse_rate_.rendered(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
+                                  static_cast<double>(out.width) * out.height);
         if (ARBOR_HAS_FIELD(arbor_image, out.struct_size, label_visibility_count) && out.label_visibility) {
             std::vector<double> sum(table_.labels(), 0.0);
             for (const std::vector<double> &v : visibility)
@@ -273,27 +161,6 @@ public:
     }
 
 private:
-    // After a coarse frame that took `seconds`: the fewest pixels per
-    // ray whose frames are predicted to take at most `budget` (a frame's
-    // time goes with its rays, 1 / n^2).  A smoothed time, so one slow frame
-    // does not make the picture jump.
-    void adapt_coarse(double seconds, double budget)
-    {
-        const double n = coarse_pixels_;
-        coarse_seconds_ = coarse_seconds_ > 0 ? 0.5 * coarse_seconds_ + 0.5 * seconds : seconds;
-        const double per_ray_area = coarse_seconds_ * n * n; // the frame's time at one ray per pixel
-        double next = kCoarseMax;
-        for (double m = kCoarseMin; m <= kCoarseMax; m += kCoarseStepBy)
-            if (per_ray_area / (m * m) <= budget) {
-                next = m;
-                break;
-            }
-        if (next != coarse_pixels_) {
-            coarse_seconds_ *= (n * n) / (next * next);
-            coarse_pixels_ = next;
-        }
-    }
-
     struct Pass {
         double pixels = kCoarseStart; // COARSE: one ray per pixels x pixels
         const VoxelGrid *grid = nullptr;
@@ -379,7 +246,7 @@ private:
                         return;
                     for (uint32_t x = 0; x < out.width; ++x) {
                         const uint32_t fx = request.region_x + x, fy = request.region_y + y;
-                        const Sample s = cast(pass, fx + offset[0], fy + offset[1], ray_offset(pass, fx, fy),
+                        const Sample s = cast(pass, fx + offset[0], fy + offset[1], ray_offset(pass.jitter, pass.sample_index, fx, fy),
                                               mine.data());
                         float *px = out.rgba + static_cast<int64_t>(y) * out.row_stride + 4 * static_cast<int64_t>(x);
                         if (pass.sample_index) {
@@ -399,25 +266,14 @@ private:
         });
     }
 
-    // COARSE: a ray per n x n block of the frame (at the
-    // block's centre, so tiles agree), each pixel bilinear between the four
-    // rays around it.  The rays are cast first; the pixels are written only
-    // when all are done.
+    // COARSE: a ray per n x n block of the frame, each pixel bilinear
+    // between the four rays around it.  The rays are cast first; the pixels
+    // are written only when all are done.
     void render_coarse(const Pass &pass, const arbor_render_request_v2 &request, arbor_image &out,
                        Cancellation &cancel, Slots &visibility) const
     {
-        const double f = pass.pixels;
-        const auto count = [&](uint32_t side) { return std::max<int64_t>(1, static_cast<int64_t>(std::ceil(side / f))); };
-        const int64_t columns = count(request.frame_width), rows = count(request.frame_height);
-        // The ray lattice position of frame pixel centre p: (p - f / 2) / f.
-        const auto lattice = [&](double p, int64_t n) { return std::clamp((p - f / 2) / f, 0.0, double(n - 1)); };
-        const int64_t m0 = static_cast<int64_t>(lattice(request.region_x + 0.5, columns)),
-                      m1 = std::min<int64_t>(columns - 1,
-                                             static_cast<int64_t>(lattice(request.region_x + out.width - 0.5, columns)) + 1),
-                      n0 = static_cast<int64_t>(lattice(request.region_y + 0.5, rows)),
-                      n1 = std::min<int64_t>(rows - 1,
-                                             static_cast<int64_t>(lattice(request.region_y + out.height - 0.5, rows)) + 1);
-        const int64_t w = m1 - m0 + 1, h = n1 - n0 + 1;
+        const CoarseLattice lattice(request, pass.pixels);
+        const int64_t w = lattice.columns(), h = lattice.rows();
         std::vector<Sample> rays(static_cast<std::size_t>(w * h));
         // Each coarse ray stands for pixels^2 pixels of the frame; the
         // visibility is scaled to the region's pixels below.
@@ -428,9 +284,10 @@ private:
                 if (cancel.stopped())
                     return;
                 for (int64_t m = 0; m < w; ++m) {
-                    const double px = (m0 + m) * f + f / 2, py = (n0 + n) * f + f / 2;
+                    const double px = lattice.x(m), py = lattice.y(n);
                     rays[static_cast<std::size_t>(n * w + m)] =
-                        cast(pass, px, py, ray_offset(pass, static_cast<uint32_t>(px), static_cast<uint32_t>(py)),
+                        cast(pass, px, py,
+                             ray_offset(pass.jitter, 0, static_cast<uint32_t>(px), static_cast<uint32_t>(py)),
                              mine.data());
                 }
             }
@@ -441,47 +298,7 @@ private:
         for (const std::vector<double> &v : raw)
             for (std::size_t l = 0; l < v.size(); ++l)
                 visibility[0][l] += per_ray * v[l];
-        const int64_t depth_stride = depth_stride_of(out);
-        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, out.height, kRows), [&](const tbb::blocked_range<uint32_t> &r) {
-            for (uint32_t y = r.begin(); y != r.end(); ++y) {
-                const double v = lattice(request.region_y + y + 0.5, rows) - static_cast<double>(n0);
-                const int64_t b = std::min<int64_t>(static_cast<int64_t>(v), h - 1), b1 = std::min<int64_t>(b + 1, h - 1);
-                const float fy = static_cast<float>(v - static_cast<double>(b));
-                float *row = out.rgba + static_cast<int64_t>(y) * out.row_stride;
-                for (uint32_t x = 0; x < out.width; ++x) {
-                    const double u = lattice(request.region_x + x + 0.5, columns) - static_cast<double>(m0);
-                    const int64_t a = std::min<int64_t>(static_cast<int64_t>(u), w - 1), a1 = std::min<int64_t>(a + 1, w - 1);
-                    const float fx = static_cast<float>(u - static_cast<double>(a));
-                    const Sample &s00 = rays[static_cast<std::size_t>(b * w + a)], &s10 = rays[static_cast<std::size_t>(b * w + a1)],
-                                 &s01 = rays[static_cast<std::size_t>(b1 * w + a)], &s11 = rays[static_cast<std::size_t>(b1 * w + a1)];
-                    for (int c = 0; c < 4; ++c) {
-                        const float top = s00.rgba[c] + fx * (s10.rgba[c] - s00.rgba[c]);
-                        const float bottom = s01.rgba[c] + fx * (s11.rgba[c] - s01.rgba[c]);
-                        row[4 * x + c] = std::clamp(top + fy * (bottom - top), 0.0f, 1.0f);
-                    }
-                    if (out.depth) // the nearest ray's depth: depths do not interpolate across edges
-                        out.depth[static_cast<int64_t>(y) * depth_stride + x] =
-                            (fy < 0.5f ? (fx < 0.5f ? s00 : s10) : (fx < 0.5f ? s01 : s11)).depth;
-                }
-            }
-        });
-    }
-
-    static int64_t depth_stride_of(const arbor_image &out)
-    {
-        return ARBOR_HAS_FIELD(arbor_image, out.struct_size, depth_stride) && out.depth_stride > 0
-                   ? out.depth_stride
-                   : static_cast<int64_t>(out.width);
-    }
-
-    // The fraction of a step the ray of frame pixel (x, y) starts at: fixed
-    // per pixel (noise, not rings), moved on by each supersample.
-    static double ray_offset(const Pass &pass, uint32_t x, uint32_t y)
-    {
-        if (!pass.jitter)
-            return 0.0;
-        const double h = pixel_hash(x, y);
-        return pass.sample_index ? std::fmod(h + 0.61803398874989485 * pass.sample_index, 1.0) : h;
+        lattice.interpolate(rays, out);
     }
 
     // The ray through frame position (px, py), its first sample `offset` of
@@ -533,7 +350,7 @@ private:
             const int64_t j = std::min(static_cast<int64_t>(py), last_j);
             const int64_t k = std::min(static_cast<int64_t>(pz), last_k);
             if (occupancy.empty(i >> 3, j >> 3, k >> 3)) { // kBlock = 8
-                t = skip_block(o, d, t, step, i, j, k);
+                t = skip_block(o, d, t, step, offset, i, j, k);
                 continue;
             }
             const float fx = static_cast<float>(px - i), fy = static_cast<float>(py - j), fz = static_cast<float>(pz - k);
@@ -584,16 +401,6 @@ private:
         return out;
     }
 
-    // A fixed pseudo-random number in [0, 1) per pixel (integer hash).
-    static double pixel_hash(uint32_t x, uint32_t y)
-    {
-        uint32_t h = x * 0x8da6b343u ^ y * 0xd8163841u;
-        h ^= h >> 15;
-        h *= 0x2c1b3c6du;
-        h ^= h >> 12;
-        return (h & 0xffffff) / 16777216.0;
-    }
-
     static float trilinear(const VoxelGrid &g, int64_t i, int64_t j, int64_t k, float fx, float fy, float fz)
     {
         const int64_t di = g.nx > 1 ? 1 : 0, dj = g.ny > 1 ? g.nx : 0, dk = g.nz > 1 ? g.nx * g.ny : 0;
@@ -606,8 +413,10 @@ private:
         return c0 + fz * (c1 - c0);
     }
 
-    // The first lattice position past the block holding cell (i, j, k).
-    static double skip_block(const Vec3 &o, const Vec3 &d, double t, double step, int64_t i, int64_t j, int64_t k)
+    // The first position of the ray's own (offset) lattice past the block
+    // holding cell (i, j, k): skipping keeps each ray's jitter.
+    static double skip_block(const Vec3 &o, const Vec3 &d, double t, double step, double offset, int64_t i, int64_t j,
+                             int64_t k)
     {
         const int64_t cell[3] = {i, j, k};
         double exit = std::numeric_limits<double>::infinity();
@@ -619,7 +428,7 @@ private:
                                           : static_cast<double>(b * Occupancy::kBlock) - 1e-9;
             exit = std::min(exit, (bound - o[a]) / d[a]);
         }
-        return std::max(t + step, std::ceil(exit / step) * step);
+        return std::max(t + step, std::ceil((exit - offset) / step) * step + offset);
     }
 
     VoxelGridCache grid_;
@@ -634,9 +443,7 @@ private:
     float shading_occlusion_ = 0.0f;
     uint64_t table_print_ = 0;
     double step_ = -1.0, emphasis_ = -1.0;
-    double coarse_pixels_ = kCoarseStart;
-    double coarse_seconds_ = 0.0;              // smoothed time of a whole coarse frame
-    double frame_seconds_ = 0, frame_pixels_ = 0; // the coarse frame being rendered, tile by tile
+    CoarseRate coarse_rate_;
     std::unique_ptr<tbb::task_arena> arena_; // the pool the tiles run on (oneTBB's threads persist)
     unsigned arena_threads_ = 0;
 };

@@ -164,6 +164,16 @@ _Static_assert(offsetof(arbor_plugin_entry, deinit) == 24, "offset of arbor_plug
 _Static_assert(offsetof(arbor_plugin_entry, plugin_count) == 32, "offset of arbor_plugin_entry.plugin_count changed");
 _Static_assert(offsetof(arbor_plugin_entry, plugin_descriptor) == 40, "offset of arbor_plugin_entry.plugin_descriptor changed");
 _Static_assert(offsetof(arbor_plugin_entry, create_plugin) == 48, "offset of arbor_plugin_entry.create_plugin changed");
+_Static_assert(sizeof(arbor_render_device) == 16, "size of arbor_render_device changed");
+_Static_assert(_Alignof(arbor_render_device) == 8, "alignment of arbor_render_device changed");
+_Static_assert(offsetof(arbor_render_device, struct_size) == 0, "offset of arbor_render_device.struct_size changed");
+_Static_assert(offsetof(arbor_render_device, kind) == 4, "offset of arbor_render_device.kind changed");
+_Static_assert(offsetof(arbor_render_device, name) == 8, "offset of arbor_render_device.name changed");
+_Static_assert(sizeof(arbor_render_device_v1) == 16, "size of arbor_render_device_v1 changed");
+_Static_assert(_Alignof(arbor_render_device_v1) == 8, "alignment of arbor_render_device_v1 changed");
+_Static_assert(offsetof(arbor_render_device_v1, struct_size) == 0, "offset of arbor_render_device_v1.struct_size changed");
+_Static_assert(offsetof(arbor_render_device_v1, reserved0) == 4, "offset of arbor_render_device_v1.reserved0 changed");
+_Static_assert(offsetof(arbor_render_device_v1, describe) == 8, "offset of arbor_render_device_v1.describe changed");
 _Static_assert(sizeof(arbor_render_request) == 72, "size of arbor_render_request changed");
 _Static_assert(_Alignof(arbor_render_request) == 8, "alignment of arbor_render_request changed");
 _Static_assert(offsetof(arbor_render_request, struct_size) == 0, "offset of arbor_render_request.struct_size changed");
@@ -310,6 +320,7 @@ int main(void)
         {"ARBOR_MEASURE_THICKNESS", ARBOR_MEASURE_THICKNESS, "thickness-mm"},
         {"ARBOR_MEASURE_COMPACTNESS", ARBOR_MEASURE_COMPACTNESS, "compactness"},
         {"ARBOR_INTERFACE_RENDERER_2", ARBOR_INTERFACE_RENDERER_2, "arbor.renderer/2"},
+        {"ARBOR_INTERFACE_RENDER_DEVICE", ARBOR_INTERFACE_RENDER_DEVICE, "arbor.render-device/1"},
     };
     int failures = 0;
     size_t i;

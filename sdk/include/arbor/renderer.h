@@ -137,4 +137,33 @@ typedef struct arbor_renderer_v2 {
                            arbor_image *out, arbor_task *task);
 } arbor_renderer_v2;
 
+/* ------------------------------------------------------------------------
+ * arbor.render-device/1 (since ABI 1.2): what a renderer renders on, so
+ * the host can choose between renderers and say why.  Optional; a renderer
+ * without it counts as rendering on the CPU.  An OpenGL renderer on Mesa's
+ * llvmpipe or softpipe (graphics emulated on the CPU, slower than a CPU ray
+ * caster) says ARBOR_DEVICE_SOFTWARE_GPU.
+ * ------------------------------------------------------------------------ */
+#define ARBOR_INTERFACE_RENDER_DEVICE "arbor.render-device/1"
+
+typedef uint32_t arbor_device_kind;
+#define ARBOR_DEVICE_CPU 1u          /* the CPU's cores */
+#define ARBOR_DEVICE_GPU 2u          /* graphics hardware */
+#define ARBOR_DEVICE_SOFTWARE_GPU 3u /* a graphics API emulated on the CPU */
+
+typedef struct arbor_render_device {
+    uint32_t struct_size;
+    arbor_device_kind kind;
+    /* One line for people, e.g. "NVIDIA H200/PCIe/SSE2, OpenGL 4.6" or
+     * "llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5"; valid for the life
+     * of the instance. */
+    const char *name;
+} arbor_render_device;
+
+typedef struct arbor_render_device_v1 {
+    uint32_t struct_size;
+    uint32_t reserved0;
+    arbor_status (*describe)(const arbor_plugin *plugin, arbor_render_device *out);
+} arbor_render_device_v1;
+
 #endif /* ARBOR_RENDERER_H */

@@ -26,6 +26,8 @@ public:
         table_.render = &c_render;
         table2_.struct_size = sizeof table2_;
         table2_.render = &c_render2;
+        device_table_.struct_size = sizeof device_table_;
+        device_table_.describe = &c_describe;
     }
 
     // arbor.renderer/1: the whole frame, full quality.  A v2 renderer need
@@ -56,8 +58,18 @@ public:
     }
 
 protected:
+    // arbor.render-device/1: say what this instance renders on (call it in
+    // the constructor or before the host asks).
+    void set_device(arbor_device_kind kind, std::string name)
+    {
+        device_kind_ = kind;
+        device_name_ = std::move(name);
+    }
+
     const void *find_interface(std::string_view id) const override
     {
+        if (id == ARBOR_INTERFACE_RENDER_DEVICE && device_kind_ != 0)
+            return &device_table_;
         if (id == ARBOR_INTERFACE_RENDERER)
             return &table_;
         if (id == ARBOR_INTERFACE_RENDERER_2 && offered_ == Interface::v2)
@@ -141,7 +153,20 @@ private:
         });
     }
 
+    static arbor_status c_describe(const arbor_plugin *plugin, arbor_render_device *out)
+    {
+        if (!plugin || !out || out->struct_size < sizeof(arbor_render_device))
+            return ARBOR_ERROR_INVALID_ARGUMENT;
+        const auto &self = *static_cast<const Renderer *>(static_cast<const Instance *>(plugin->plugin_data));
+        out->kind = self.device_kind_;
+        out->name = self.device_name_.c_str();
+        return ARBOR_OK;
+    }
+
     Interface offered_;
+    arbor_device_kind device_kind_ = 0;
+    std::string device_name_;
+    arbor_render_device_v1 device_table_{};
     arbor_renderer_v1 table_{};
     arbor_renderer_v2 table2_{};
 };

@@ -31,10 +31,17 @@ public:
     float max_alpha(uint32_t label, float lo, float hi) const;
     uint32_t labels() const { return static_cast<uint32_t>(range_.size()); }
 
-private:
+    // The tables as lookup() reads them: entries per label, the
+    // premultiplied RGBA rows (label after label), and each label's map
+    // from value to entry, clamp((value - low) * scale, 0, last).
     struct Range {
         float low, scale, last;
     };
+    uint32_t entries() const { return size_; }
+    const std::vector<float> &rgba() const { return rgba_; }
+    const Range &range(uint32_t label) const { return range_[label]; }
+
+private:
     uint32_t size_ = 0, levels_ = 0;
     std::vector<Range> range_;
     std::vector<float> rgba_;
@@ -53,6 +60,7 @@ public:
     void build(const VoxelGrid &g, const ClassTable &table, double strength);
     float factor(uint8_t gradient) const { return factor_[gradient]; }
     bool active() const { return active_; }
+    const std::array<float, 256> &factors() const { return factor_; }
 
 private:
     std::array<float, 256> factor_{};
@@ -86,6 +94,9 @@ public:
     void build(const BlockStatistics &blocks, const ClassTable &table, const std::array<int64_t, 3> &dims);
     // True when every sample within block (bi, bj, bk) is transparent.
     bool empty(int64_t bi, int64_t bj, int64_t bk) const { return empty_[static_cast<std::size_t>(bi + bx_ * (bj + by_ * bk))]; }
+    // Blocks along each axis and the flags, i fastest (1: empty).
+    std::array<int64_t, 3> blocks() const { return {bx_, by_, bz_}; }
+    const std::vector<uint8_t> &flags() const { return empty_; }
     // Voxel-index box around every non-empty block (lo > hi when all are
     // empty): rays are clipped to it before they start.
     const std::array<double, 3> &content_low() const { return low_; }

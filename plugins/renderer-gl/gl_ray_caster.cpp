@@ -1,0 +1,424 @@
+// gl_ray_caster.cpp - org.arbor.renderer.gl-raycast: the CPU ray caster's
+// optical model in a GLSL 3.3 fragment shader (resources/shaders).  The
+// volume, labels, normals, empty blocks and per-label lookup tables are
+// textures, rebuilt when the request's revisions say they changed; the
+// classification tables come from the same code as the CPU ray caster's
+// (plugins/raycast).  It renders offscreen, into framebuffer objects of an
+// EGL context (no window, no X server), on a thread of its own; tiles,
+// the coarse pass and supersampling follow arbor.renderer/2, as the CPU
+// ray caster's do, and it says whether its OpenGL is hardware.
+#include "gl_thread.hpp"
+#include "raycast_programs.hpp"
+#include "volume_textures.hpp"
+
+#include <block_statistics.hpp>
+#include <coarse_lattice.hpp>
+#include <optical_model.hpp>
+#include <ray_geometry.hpp>
+
+#include <arbor/sdk/renderer.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <vector>
+
+namespace arbor::glraycast {
+
+extern const arbor_plugin_descriptor kGlRayCasterDescriptor;
+
+const arbor_plugin_descriptor kGlRayCasterDescriptor = {
+    sizeof(arbor_plugin_descriptor),
+    ARBOR_PLUGIN_FLAG_NONE,
+    "org.arbor.renderer.gl-raycast",
+    ARBOR_KIND_RENDERER,
+    "OpenGL ray caster",
+    "1.0.0",
+    "Arbor",
+    "The CPU ray caster's optical model (label-aware post-classification, boundary emphasis, Blinn-Phong, "
+    "empty-space skipping) in a GLSL 3.3 shader, offscreen through EGL; tiles, a coarse pass and "
+    "supersampling (arbor.renderer/2).",
+    "",
+};
+
+namespace {
+
+using raycast::Sample;
+
+constexpr GLsizei kBandRows = 64; // rows per draw: cancellation and progress between draws
+constexpr uint32_t kLabelsPerVisibilityDraw = 32;
+
+// What one draw casts: a grid of rays, fragment (x, y) at frame position
+// base + (x, y) * spacing + subpixel.
+struct RayGrid {
+    GLsizei width = 0, height = 0;
+    double base_x = 0, base_y = 0, spacing = 1;
+    double subpixel_x = 0.5, subpixel_y = 0.5;
+    double shift = 0;   // supersampling: fract(golden * sample)
+    bool coarse = false;
+};
+
+class GlRayCaster final : public sdk::Renderer {
+public:
+    explicit GlRayCaster(const arbor_host *host)
+        : Renderer(kGlRayCasterDescriptor, host, raycast::optical_model_params(), Interface::v2)
+    {
+        gl_ = std::make_unique<GlThread>();
+        const EglContext &c = gl_->context();
+        set_device(c.software() ? ARBOR_DEVICE_SOFTWARE_GPU : ARBOR_DEVICE_GPU, c.description());
+        gl_->run([&] {
+            GLuint vao = 0;
+            glGenVertexArrays(1, &vao);
+            vao_ = VertexArray(vao);
+            GLuint fbo = 0;
+            glGenFramebuffers(1, &fbo);
+            fbo_ = Framebuffer(fbo);
+            check_gl("creating the framebuffer");
+        });
+    }
+
+    ~GlRayCaster() override
+    {
+        gl_->run([&] { // GL names die on the thread their context is current on
+            textures_ = VolumeTextures{};
+            programs_.clear();
+            for (Texture &t : targets_)
+                t.reset();
+            fbo_.reset();
+            vao_.reset();
+        });
+    }
+
+    void render_region(const arbor_render_request_v2 &request, arbor_image &out, const sdk::Task &task) override
+    {
+        const raycast::VoxelGrid &g = prepare(request, task);
+        const bool coarse = request.pass == ARBOR_RENDER_PASS_COARSE;
+        const uint32_t sample = request.pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? request.sample_index : 0;
+        const bool want_visibility =
+            ARBOR_HAS_FIELD(arbor_image, out.struct_size, label_visibility_count) && out.label_visibility;
+        std::vector<double> visibility(table_.labels(), 0.0);
+        const auto started = std::chrono::steady_clock::now();
+
+        RayGrid grid;
+        std::unique_ptr<raycast::CoarseLattice> lattice;
+        if (coarse) {
+            const double pixels = coarse_rate_.pixels_for(request, params().number("coarse-rate"),
+                                                          static_cast<double>(params().integer("coarse-pixels")));
+            lattice = std::make_unique<raycast::CoarseLattice>(request, pixels);
+            grid.width = static_cast<GLsizei>(lattice->columns());
+            grid.height = static_cast<GLsizei>(lattice->rows());
+            grid.base_x = lattice->x(0);
+            grid.base_y = lattice->y(0);
+            grid.spacing = pixels;
+            grid.subpixel_x = grid.subpixel_y = 0;
+            grid.coarse = true;
+        } else {
+            grid.width = static_cast<GLsizei>(out.width);
+            grid.height = static_cast<GLsizei>(out.height);
+            grid.base_x = request.region_x;
+            grid.base_y = request.region_y;
+            if (sample) {
+                const auto offset = raycast::subpixel(sample);
+                grid.subpixel_x = offset[0];
+                grid.subpixel_y = offset[1];
+                grid.shift = std::fmod(raycast::kSupersampleShift * sample, 1.0);
+            }
+        }
+        const std::size_t rays = static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height);
+        std::vector<float> rgba(4 * rays), depth(rays);
+        bool finished = false;
+        gl_->run([&] {
+            textures_.bind(grid.coarse);
+            if (!cast(request, g, grid, task, 0, rgba.data(), depth.data(), nullptr))
+                return;
+            if (want_visibility) {
+                std::vector<float> seen(4 * rays);
+                for (uint32_t base = 0; base < table_.labels(); base += kLabelsPerVisibilityDraw)
+                    if (!cast(request, g, grid, task, base, nullptr, nullptr, &visibility))
+                        return;
+            }
+            finished = true;
+        });
+        task.throw_if_cancelled();
+        if (!finished)
+            sdk::fail(ARBOR_ERROR_CANCELLED, "cancelled");
+        // Every pixel is written only now: a cancelled call left them all.
+        if (coarse) {
+            std::vector<Sample> samples(rays);
+            for (std::size_t r = 0; r < rays; ++r) {
+                std::memcpy(samples[r].rgba, &rgba[4 * r], sizeof samples[r].rgba);
+                samples[r].depth = depth[r] < 0 ? std::numeric_limits<float>::infinity() : depth[r];
+            }
+            lattice->interpolate(samples, out);
+            const double per_ray = static_cast<double>(out.width) * out.height / static_cast<double>(rays);
+            for (double &v : visibility)
+                v *= per_ray;
+            coarse_rate_.rendered(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
+                                  static_cast<double>(out.width) * out.height);
+        } else {
+            write_pixels(rgba, depth, sample, out);
+        }
+        if (want_visibility)
+            for (uint32_t l = 0; l < out.label_visibility_count; ++l)
+                out.label_visibility[l] = l < visibility.size() ? visibility[l] : 0.0;
+    }
+
+private:
+    // The grid, block statistics and tables up to date with the request
+    // (on the calling thread, all cores), then the textures (GL thread).
+    const raycast::VoxelGrid &prepare(const arbor_render_request_v2 &request, const sdk::Task &task)
+    {
+        const uint64_t before = grid_.generation();
+        const raycast::VoxelGrid &g =
+            grid_.update(*request.volume, request.volume_revision, request.labels, request.labels_revision, task);
+        const arbor_tf_set &tf = *request.transfer_functions;
+        if (g.max_label >= tf.branch_count)
+            sdk::fail(ARBOR_ERROR_INVALID_ARGUMENT, "label " + std::to_string(g.max_label) +
+                                                        " has no transfer function (" +
+                                                        std::to_string(tf.branch_count) + " given)");
+        const bool grid_changed = grid_.generation() != uploaded_generation_ || grid_.generation() != before;
+        if (grid_changed) {
+            uploaded_generation_ = ~uint64_t{0};
+            blocks_.build(g, task);
+            gl_->run([&] {
+                if (!volume_uploaded_ || volume_revision_ != request.volume_revision || request.volume_revision == 0 ||
+                    volume_pointer_ != request.volume->voxels) {
+                    textures_.upload_volume(g);
+                    volume_uploaded_ = true;
+                }
+                textures_.upload_labels(g);
+            });
+            volume_revision_ = request.volume_revision;
+            volume_pointer_ = request.volume->voxels;
+        }
+        const double step = params().number("sample-distance") * g.min_spacing;
+        const double emphasis = params().number("boundary-emphasis");
+        const raycast::Shading shading = raycast::Shading::from(params());
+        const uint64_t print = request.transfer_functions_revision;
+        if (grid_changed || print == 0 || print != tf_revision_ || step != step_ || emphasis != emphasis_ ||
+            shading.highlight != shading_.highlight) {
+            tf_revision_ = 0;
+            table_.build(tf, step);
+            coarse_table_.build(tf, step * raycast::kCoarseStep);
+            occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz});
+            boundaries_.build(g, table_, emphasis);
+            gl_->run([&] {
+                textures_.upload_blocks(occupancy_);
+                textures_.upload_tables(table_, coarse_table_, boundaries_, shading);
+            });
+            tf_revision_ = print;
+            step_ = step;
+            emphasis_ = emphasis;
+            shading_ = shading;
+        }
+        uploaded_generation_ = grid_.generation();
+        return g;
+    }
+
+    // One kind of draw over the grid, in bands of rows, then read back:
+    // colour and depth (rgba, depth), or what labels [base, base + 32)
+    // contributed, added to visibility.  False when cancelled.
+    bool cast(const arbor_render_request_v2 &request, const raycast::VoxelGrid &g, const RayGrid &grid,
+              const sdk::Task &task, uint32_t base, float *rgba, float *depth, std::vector<double> *visibility)
+    {
+        const bool seen = visibility != nullptr;
+        const raycast::Shading shading = raycast::Shading::from(params());
+        unsigned variant = 0;
+        if (textures_.labelled())
+            variant |= kLabelled;
+        if (shading.enabled)
+            variant |= kShaded;
+        if (boundaries_.active())
+            variant |= kBoundary;
+        if (params().flag("jitter"))
+            variant |= kJitter;
+        if (seen)
+            variant |= kVisibility;
+        const GLuint program = programs_.get(variant);
+        glUseProgram(program);
+        set_uniforms(program, request, g, grid, base, shading);
+        const int targets = seen ? 8 : 2;
+        bind_targets(grid.width, grid.height, targets, seen);
+        glViewport(0, 0, grid.width, grid.height);
+        glEnable(GL_SCISSOR_TEST);
+        glBindVertexArray(vao_.get());
+        const GLsizei bands = (grid.height + kBandRows - 1) / kBandRows;
+        for (GLsizei b = 0; b < bands; ++b) {
+            glScissor(0, b * kBandRows, grid.width, std::min(kBandRows, grid.height - b * kBandRows));
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+            glFinish();
+            if (task.cancelled())
+                return false;
+            task.progress((b + 1.0) / bands, seen ? "measuring visibility" : "ray casting");
+        }
+        glDisable(GL_SCISSOR_TEST);
+        check_gl("ray casting");
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        if (seen) {
+            std::vector<float> read(4 * static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height));
+            for (int k = 0; k < 8; ++k) {
+                glReadBuffer(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k));
+                glReadPixels(0, 0, grid.width, grid.height, GL_RGBA, GL_FLOAT, read.data());
+                double sum[4] = {0, 0, 0, 0};
+                for (std::size_t p = 0; p < read.size(); p += 4)
+                    for (int c = 0; c < 4; ++c)
+                        sum[c] += read[p + static_cast<std::size_t>(c)];
+                for (int c = 0; c < 4; ++c) {
+                    const std::size_t label = base + 4 * static_cast<std::size_t>(k) + static_cast<std::size_t>(c);
+                    if (label < visibility->size())
+                        (*visibility)[label] += sum[c];
+                }
+            }
+        } else {
+            glReadBuffer(GL_COLOR_ATTACHMENT0);
+            glReadPixels(0, 0, grid.width, grid.height, GL_RGBA, GL_FLOAT, rgba);
+            glReadBuffer(GL_COLOR_ATTACHMENT1);
+            glReadPixels(0, 0, grid.width, grid.height, GL_RED, GL_FLOAT, depth);
+        }
+        check_gl("reading the image back");
+        return true;
+    }
+
+    void set_uniforms(GLuint program, const arbor_render_request_v2 &request, const raycast::VoxelGrid &g,
+                      const RayGrid &grid, uint32_t base, const raycast::Shading &shading)
+    {
+        const auto at = [&](const char *name) { return glGetUniformLocation(program, name); };
+        const auto vec3 = [&](const char *name, const raycast::Vec3 &v) {
+            glUniform3f(at(name), static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
+        };
+        glUniform1i(at("u_values"), kValues);
+        glUniform1i(at("u_labels"), kLabels);
+        glUniform1i(at("u_normals"), kNormals);
+        glUniform1i(at("u_blocks"), kBlocks);
+        glUniform1i(at("u_lut"), kLut);
+        glUniform1i(at("u_ranges"), kRanges);
+        glUniform1i(at("u_factors"), kFactors);
+        glUniform3i(at("u_dims"), static_cast<GLint>(g.nx), static_cast<GLint>(g.ny), static_cast<GLint>(g.nz));
+        vec3("u_origin", g.origin);
+        float to_voxel[9];
+        for (int i = 0; i < 9; ++i)
+            to_voxel[i] = static_cast<float>(g.to_voxel[i]);
+        glUniformMatrix3fv(at("u_to_voxel"), 1, GL_TRUE, to_voxel); // row-major
+        const auto &lo = occupancy_.content_low(), &hi = occupancy_.content_high();
+        vec3("u_content_low", {lo[0], lo[1], lo[2]});
+        vec3("u_content_high", {hi[0], hi[1], hi[2]});
+        const raycast::Camera camera(*request.camera, request.frame_width, request.frame_height);
+        vec3("u_eye", camera.position());
+        vec3("u_forward", camera.forward());
+        vec3("u_right", camera.right());
+        vec3("u_up", camera.up());
+        glUniform1i(at("u_perspective"), camera.perspective() ? 1 : 0);
+        glUniform1f(at("u_half"), static_cast<float>(camera.half_height()));
+        glUniform1f(at("u_aspect"), static_cast<float>(camera.aspect()));
+        glUniform2f(at("u_frame"), static_cast<float>(request.frame_width), static_cast<float>(request.frame_height));
+        glUniform2f(at("u_base"), static_cast<float>(grid.base_x), static_cast<float>(grid.base_y));
+        glUniform1f(at("u_spacing"), static_cast<float>(grid.spacing));
+        glUniform2f(at("u_subpixel"), static_cast<float>(grid.subpixel_x), static_cast<float>(grid.subpixel_y));
+        glUniform1f(at("u_shift"), static_cast<float>(grid.shift));
+        glUniform1f(at("u_step"), static_cast<float>(step_ * (grid.coarse ? raycast::kCoarseStep : 1.0)));
+        glUniform1f(at("u_termination"), static_cast<float>(params().number("termination")));
+        glUniform4fv(at("u_background"), 1, request.background);
+        glUniform1f(at("u_ambient"), shading.ambient);
+        glUniform1f(at("u_diffuse"), shading.diffuse);
+        glUniform1i(at("u_visibility_base"), static_cast<GLint>(base));
+    }
+
+    // Colour and depth targets (or eight visibility targets) of at least
+    // width x height on the framebuffer.
+    void bind_targets(GLsizei width, GLsizei height, int count, bool visibility)
+    {
+        if (width > target_width_ || height > target_height_) {
+            target_width_ = std::max(width, target_width_);
+            target_height_ = std::max(height, target_height_);
+            for (Texture &t : targets_)
+                t.reset();
+        }
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+        GLenum buffers[8];
+        for (int k = 0; k < 8; ++k) {
+            // Targets 0 and 1: colour and depth; 2-9: visibility.
+            const int index = visibility ? 2 + k : k;
+            if (k < count) {
+                Texture &t = targets_[static_cast<std::size_t>(index)];
+                if (!t) {
+                    t = make_texture();
+                    glBindTexture(GL_TEXTURE_2D, t.get());
+                    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+                    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+                    const bool single = !visibility && k == 1;
+                    glTexImage2D(GL_TEXTURE_2D, 0, single ? GL_R32F : GL_RGBA32F, target_width_, target_height_, 0,
+                                 single ? GL_RED : GL_RGBA, GL_FLOAT, nullptr);
+                    check_gl("allocating the image");
+                }
+                glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k), GL_TEXTURE_2D,
+                                       t.get(), 0);
+                buffers[k] = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k);
+            } else {
+                glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k), GL_TEXTURE_2D, 0, 0);
+                buffers[k] = GL_NONE;
+            }
+        }
+        glDrawBuffers(8, buffers);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            throw std::runtime_error("the offscreen framebuffer is incomplete");
+    }
+
+    // FULL writes the pixels; SUPERSAMPLE blends the new sample in.
+    static void write_pixels(const std::vector<float> &rgba, const std::vector<float> &depth, uint32_t sample,
+                             arbor_image &out)
+    {
+        const int64_t depth_stride = raycast::depth_stride_of(out);
+        const float blend = sample ? 1.0f / static_cast<float>(sample + 1) : 1.0f;
+        for (uint32_t y = 0; y < out.height; ++y) {
+            float *row = out.rgba + static_cast<int64_t>(y) * out.row_stride;
+            const float *in = &rgba[4 * static_cast<std::size_t>(y) * out.width];
+            if (sample) {
+                for (uint32_t i = 0; i < 4 * out.width; ++i)
+                    row[i] += blend * (in[i] - row[i]);
+                continue;
+            }
+            for (uint32_t i = 0; i < 4 * out.width; ++i)
+                row[i] = std::clamp(in[i], 0.0f, 1.0f);
+            if (out.depth)
+                for (uint32_t x = 0; x < out.width; ++x) {
+                    const float d = depth[static_cast<std::size_t>(y) * out.width + x];
+                    out.depth[static_cast<int64_t>(y) * depth_stride + x] =
+                        d < 0 ? std::numeric_limits<float>::infinity() : d;
+                }
+        }
+    }
+
+    std::unique_ptr<GlThread> gl_;
+    VertexArray vao_;
+    Framebuffer fbo_;
+    std::array<Texture, 10> targets_;
+    GLsizei target_width_ = 0, target_height_ = 0;
+    RaycastPrograms programs_;
+    VolumeTextures textures_;
+
+    raycast::VoxelGridCache grid_;
+    raycast::BlockStatistics blocks_;
+    raycast::ClassTable table_, coarse_table_;
+    raycast::Occupancy occupancy_;
+    raycast::BoundaryEmphasis boundaries_;
+    raycast::Shading shading_;
+    raycast::CoarseRate coarse_rate_;
+    uint64_t uploaded_generation_ = ~uint64_t{0};
+    uint64_t tf_revision_ = 0;
+    uint64_t volume_revision_ = 0;
+    const void *volume_pointer_ = nullptr;
+    bool volume_uploaded_ = false;
+    double step_ = -1.0, emphasis_ = -1.0;
+};
+
+} // namespace
+
+sdk::Instance *create_gl_ray_caster(const arbor_host *host)
+{
+    return new GlRayCaster(host);
+}
+
+} // namespace arbor::glraycast

@@ -1,0 +1,31 @@
+// raycast_programs.hpp - the ray casting shader (resources/shaders,
+// embedded at build time) compiled once per variant: which of LABELLED,
+// SHADED, BOUNDARY, JITTER and VISIBILITY it is built with.
+#pragma once
+
+#include "gl_objects.hpp"
+
+#include <map>
+#include <string>
+
+namespace arbor::glraycast {
+
+enum Variant : unsigned {
+    kLabelled = 1u << 0,
+    kShaded = 1u << 1,
+    kBoundary = 1u << 2,
+    kJitter = 1u << 3,
+    kVisibility = 1u << 4,
+};
+
+class RaycastPrograms {
+public:
+    // The program of this variant, compiled and linked on first use.
+    GLuint get(unsigned variant);
+    void clear() { programs_.clear(); }
+
+private:
+    std::map<unsigned, Program> programs_;
+};
+
+} // namespace arbor::glraycast

@@ -1,0 +1,143 @@
+#include "volume_textures.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace arbor::glraycast {
+
+namespace {
+
+void nearest(GLenum target)
+{
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(target, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(target, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    if (target == GL_TEXTURE_3D)
+        glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+}
+
+void texture_3d(Texture &t, GLint internal, GLenum format, GLenum type, const raycast::VoxelGrid &g, const void *data,
+                bool linear)
+{
+    if (!t)
+        t = make_texture();
+    glBindTexture(GL_TEXTURE_3D, t.get());
+    nearest(GL_TEXTURE_3D);
+    if (linear) {
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage3D(GL_TEXTURE_3D, 0, internal, static_cast<GLsizei>(g.nx), static_cast<GLsizei>(g.ny),
+                 static_cast<GLsizei>(g.nz), 0, format, type, data);
+}
+
+void texture_2d(Texture &t, GLint internal, GLsizei w, GLsizei h, GLenum format, const float *data)
+{
+    if (!t)
+        t = make_texture();
+    glBindTexture(GL_TEXTURE_2D, t.get());
+    nearest(GL_TEXTURE_2D);
+    glTexImage2D(GL_TEXTURE_2D, 0, internal, w, h, 0, format, GL_FLOAT, data);
+}
+
+} // namespace
+
+void VolumeTextures::upload_volume(const raycast::VoxelGrid &g)
+{
+    GLint largest = 0;
+    glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &largest);
+    if (g.nx > largest || g.ny > largest || g.nz > largest)
+        throw std::runtime_error("the volume (" + std::to_string(g.nx) + " x " + std::to_string(g.ny) + " x " +
+                                 std::to_string(g.nz) + ") exceeds this OpenGL's 3D texture size of " +
+                                 std::to_string(largest) + "; the CPU ray caster has no such limit");
+    texture_3d(values_, GL_R32F, GL_RED, GL_FLOAT, g, g.value.data(), true);
+    check_gl("uploading the voxel values");
+    // Normal xyz and gradient magnitude (shifted to a signed byte) together:
+    // one fetch per sample.
+    std::vector<int8_t> packed(4 * g.value.size());
+    for (std::size_t v = 0; v < g.value.size(); ++v) {
+        packed[4 * v] = g.normal[3 * v];
+        packed[4 * v + 1] = g.normal[3 * v + 1];
+        packed[4 * v + 2] = g.normal[3 * v + 2];
+        packed[4 * v + 3] = static_cast<int8_t>(static_cast<int>(g.gradient[v]) - 128);
+    }
+    texture_3d(normals_, GL_RGBA8I, GL_RGBA_INTEGER, GL_BYTE, g, packed.data(), false);
+    check_gl("uploading the normals");
+}
+
+void VolumeTextures::upload_labels(const raycast::VoxelGrid &g)
+{
+    labelled_ = !g.label.empty();
+    if (!labelled_) {
+        labels_.reset();
+        return;
+    }
+    if (g.max_label < 65536) {
+        std::vector<uint16_t> small(g.label.begin(), g.label.end());
+        texture_3d(labels_, GL_R16UI, GL_RED_INTEGER, GL_UNSIGNED_SHORT, g, small.data(), false);
+    } else {
+        texture_3d(labels_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, g, g.label.data(), false);
+    }
+    check_gl("uploading the label map");
+}
+
+void VolumeTextures::upload_blocks(const raycast::Occupancy &occupancy)
+{
+    const auto b = occupancy.blocks();
+    if (!blocks_)
+        blocks_ = make_texture();
+    glBindTexture(GL_TEXTURE_3D, blocks_.get());
+    nearest(GL_TEXTURE_3D);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_R8UI, static_cast<GLsizei>(b[0]), static_cast<GLsizei>(b[1]),
+                 static_cast<GLsizei>(b[2]), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, occupancy.flags().data());
+    check_gl("uploading the empty blocks");
+}
+
+void VolumeTextures::upload_tables(const raycast::ClassTable &table, const raycast::ClassTable &coarse,
+                                   const raycast::BoundaryEmphasis &boundaries, const raycast::Shading &shading)
+{
+    GLint largest = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &largest);
+    const GLsizei entries = static_cast<GLsizei>(table.entries()), labels = static_cast<GLsizei>(table.labels());
+    if (entries > largest || labels > largest)
+        throw std::runtime_error(std::to_string(labels) + " lookup tables of " + std::to_string(entries) +
+                                 " entries exceed this OpenGL's texture size of " + std::to_string(largest));
+    texture_2d(lut_, GL_RGBA32F, entries, labels, GL_RGBA, table.rgba().data());
+    texture_2d(coarse_lut_, GL_RGBA32F, entries, labels, GL_RGBA, coarse.rgba().data());
+    std::vector<float> ranges(4 * static_cast<std::size_t>(labels));
+    for (GLsizei l = 0; l < labels; ++l) {
+        const auto &r = table.range(static_cast<uint32_t>(l));
+        ranges[4 * l] = r.low;
+        ranges[4 * l + 1] = r.scale;
+        ranges[4 * l + 2] = r.last;
+    }
+    texture_2d(ranges_, GL_RGBA32F, labels, 1, GL_RGBA, ranges.data());
+    std::vector<float> factors(2 * shading.highlight.size(), 1.0f);
+    std::copy(boundaries.factors().begin(), boundaries.factors().end(), factors.begin());
+    std::copy(shading.highlight.begin(), shading.highlight.end(), factors.begin() + shading.highlight.size());
+    texture_2d(factors_, GL_R32F, static_cast<GLsizei>(shading.highlight.size()), 2, GL_RED, factors.data());
+    check_gl("uploading the lookup tables");
+}
+
+void VolumeTextures::bind(bool coarse) const
+{
+    const auto at = [](Unit unit, GLenum target, const Texture &t) {
+        glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
+        glBindTexture(target, t.get());
+    };
+    at(kValues, GL_TEXTURE_3D, values_);
+    at(kLabels, GL_TEXTURE_3D, labels_);
+    at(kNormals, GL_TEXTURE_3D, normals_);
+    at(kBlocks, GL_TEXTURE_3D, blocks_);
+    at(kLut, GL_TEXTURE_2D, coarse ? coarse_lut_ : lut_);
+    at(kRanges, GL_TEXTURE_2D, ranges_);
+    at(kFactors, GL_TEXTURE_2D, factors_);
+    glActiveTexture(GL_TEXTURE0);
+}
+
+} // namespace arbor::glraycast

@@ -1,0 +1,41 @@
+// volume_textures.hpp - what the ray casting shader samples, as textures:
+// the voxel values (trilinear), labels, normals with gradient magnitudes,
+// the empty-block flags, and the classification tables (per label a row of
+// premultiplied, opacity-corrected RGBA; the value ranges; the boundary
+// factors and specular highlights).  All built by the shared ray casting
+// core (plugins/raycast), so both ray casters classify alike.
+#pragma once
+
+#include "gl_objects.hpp"
+
+#include <classification.hpp>
+#include <optical_model.hpp>
+#include <voxel_grid.hpp>
+
+namespace arbor::glraycast {
+
+// Texture units the shader's samplers read.
+enum Unit : GLint { kValues = 0, kLabels, kNormals, kBlocks, kLut, kRanges, kFactors };
+
+class VolumeTextures {
+public:
+    // Values and normals of a new volume; throws std::runtime_error when
+    // the device cannot hold it.
+    void upload_volume(const raycast::VoxelGrid &g);
+    void upload_labels(const raycast::VoxelGrid &g);
+    void upload_blocks(const raycast::Occupancy &occupancy);
+    // `table` for the full pass, `coarse` for the coarse pass (its step).
+    void upload_tables(const raycast::ClassTable &table, const raycast::ClassTable &coarse,
+                       const raycast::BoundaryEmphasis &boundaries, const raycast::Shading &shading);
+
+    // Binds every texture to its unit; the coarse pass's lookup table
+    // when `coarse`.
+    void bind(bool coarse) const;
+    bool labelled() const { return labelled_; }
+
+private:
+    Texture values_, labels_, normals_, blocks_, lut_, coarse_lut_, ranges_, factors_;
+    bool labelled_ = false;
+};
+
+} // namespace arbor::glraycast

@@ -1,0 +1,179 @@
+// raycast.frag - emission-absorption ray casting, the optical model of the
+// CPU ray caster (plugins/renderer-cpu/ray_caster.cpp), sample for sample:
+// front to back on the global lattice t = n * step + offset (offset a fixed
+// per-pixel fraction of a step when jittered), trilinear values,
+// post-classification with the lookup table of the nearest voxel's label
+// (premultiplied, opacity corrected for the step), boundary emphasis from
+// the gradient magnitude, Blinn-Phong with a headlight and two-sided
+// normals, early ray termination, empty 8^3 blocks skipped.
+//
+// Variants are chosen when the program is built (llvmpipe runs both sides
+// of a uniform branch): LABELLED, SHADED, BOUNDARY, JITTER, and VISIBILITY
+// (instead of colour: what each of 32 labels from u_visibility_base
+// contributes, T * alpha, into 8 RGBA targets).
+
+uniform sampler3D u_values;   // R32F, linear: voxel centre (i, j, k) at ((i, j, k) + 0.5) / dims
+uniform usampler3D u_labels;  // R16UI or R32UI
+uniform isampler3D u_normals; // RGBA8I: xyz unit gradient * 127 (0: flat), w gradient magnitude - 128
+uniform usampler3D u_blocks;  // R8UI per 8^3 block: 1 when every sample in it is transparent
+uniform sampler2D u_lut;      // RGBA32F, a row per label
+uniform sampler2D u_ranges;   // RGBA32F, one row: per label (low, scale, last)
+uniform sampler2D u_factors;  // R32F: row 0 boundary factor per gradient byte, row 1 highlight per ndl * 256
+
+uniform ivec3 u_dims;
+uniform vec3 u_origin;        // LPS of voxel (0, 0, 0)
+uniform mat3 u_to_voxel;      // LPS mm -> voxel index offsets
+uniform vec3 u_content_low, u_content_high; // voxel-index box around the non-empty blocks
+
+uniform vec3 u_eye, u_forward, u_right, u_up;
+uniform bool u_perspective;
+uniform float u_half, u_aspect;
+uniform vec2 u_frame;         // frame size in pixels
+uniform vec2 u_base;          // frame position of fragment (0, 0) (before u_subpixel)
+uniform float u_spacing;      // frame pixels between neighbouring fragments
+uniform vec2 u_subpixel;      // where in its pixel a fragment's ray goes
+uniform float u_shift;        // supersampling: moves each ray's start, fract(0.618 * sample)
+uniform float u_step;         // mm
+uniform float u_termination;
+uniform vec4 u_background;
+uniform float u_ambient, u_diffuse;
+uniform int u_visibility_base;
+
+#ifdef VISIBILITY
+out vec4 o_visibility[8]; // locations 0-7
+#else
+out vec4 o_rgba;   // location 0
+out float o_depth; // location 1; -1: opacity never reached 1/2
+#endif
+
+float pixel_hash(uvec2 p)
+{
+    uint h = p.x * 0x8da6b343u ^ p.y * 0xd8163841u;
+    h ^= h >> 15;
+    h *= 0x2c1b3c6du;
+    h ^= h >> 12;
+    return float(h & 0xffffffu) / 16777216.0;
+}
+
+// The first position of the ray's lattice past the block holding cell c.
+float skip_block(vec3 o, vec3 d, float t, float offset, ivec3 c)
+{
+    float exit = 3.0e38;
+    for (int a = 0; a < 3; ++a) {
+        if (abs(d[a]) < 1e-12)
+            continue;
+        int b = c[a] >> 3;
+        float bound = d[a] > 0.0 ? float((b + 1) * 8) : float(b * 8) - 1e-4;
+        exit = min(exit, (bound - o[a]) / d[a]);
+    }
+    return max(t + u_step, ceil((exit - offset) / u_step) * u_step + offset);
+}
+
+void main()
+{
+    vec2 at = u_base + floor(gl_FragCoord.xy) * u_spacing;
+    vec2 p = at + u_subpixel;
+    float sx = (2.0 * p.x / u_frame.x - 1.0) * u_aspect * u_half;
+    float sy = (1.0 - 2.0 * p.y / u_frame.y) * u_half;
+    vec3 eye = u_eye, dir = u_forward;
+    if (u_perspective)
+        dir = normalize(u_forward + sx * u_right + sy * u_up);
+    else
+        eye = u_eye + sx * u_right + sy * u_up;
+
+    vec3 o = u_to_voxel * (eye - u_origin);
+    vec3 d = u_to_voxel * dir;
+    float t0 = 0.0, t1 = 3.0e38;
+    for (int a = 0; a < 3; ++a) {
+        if (abs(d[a]) < 1e-12) {
+            if (o[a] < u_content_low[a] || o[a] > u_content_high[a])
+                t1 = -1.0;
+            continue;
+        }
+        float ta = (u_content_low[a] - o[a]) / d[a], tb = (u_content_high[a] - o[a]) / d[a];
+        t0 = max(t0, min(ta, tb));
+        t1 = min(t1, max(ta, tb));
+    }
+
+#ifdef JITTER
+    float fraction = pixel_hash(uvec2(at));
+    fraction = fract(fraction + u_shift);
+#else
+    float fraction = 0.0;
+#endif
+    float offset = fraction * u_step;
+    float t = ceil((t0 - offset) / u_step) * u_step + offset;
+    ivec3 last = max(u_dims - 2, ivec3(0));
+    ivec3 wide = ivec3(greaterThan(u_dims, ivec3(1)));
+    vec3 light = -dir;
+    vec4 acc = vec4(0.0);
+    float depth = -1.0;
+#ifdef VISIBILITY
+    float seen[32];
+    for (int l = 0; l < 32; ++l)
+        seen[l] = 0.0;
+#endif
+    while (t <= t1 && acc.a < u_termination) {
+        vec3 x = o + t * d;
+        ivec3 c = min(ivec3(x), last);
+        if (texelFetch(u_blocks, c >> 3, 0).r != 0u) {
+            t = skip_block(o, d, t, offset, c);
+            continue;
+        }
+        vec3 f = x - vec3(c);
+        float value = texture(u_values, (x + 0.5) / vec3(u_dims)).r;
+        ivec3 nearest = c + ivec3(greaterThanEqual(f, vec3(0.5))) * wide;
+#ifdef LABELLED
+        int label = int(texelFetch(u_labels, nearest, 0).r);
+#else
+        int label = 0;
+#endif
+        vec4 range = texelFetch(u_ranges, ivec2(label, 0), 0);
+        float index = clamp((value - range.x) * range.y, 0.0, range.z);
+        vec4 s = texelFetch(u_lut, ivec2(int(index + 0.5), label), 0);
+        if (s.a > 0.0) {
+#if defined(SHADED) || defined(BOUNDARY)
+            ivec4 nv = texelFetch(u_normals, nearest, 0);
+#endif
+#ifdef BOUNDARY
+            float m = texelFetch(u_factors, ivec2(nv.w + 128, 0), 0).r;
+            s *= m;
+#endif
+#ifdef SHADED
+            if (nv.x != 0 || nv.y != 0 || nv.z != 0) {
+                vec3 n = vec3(nv.xyz) / 127.0;
+                float ndl = abs(dot(n, light));
+                float spec = texelFetch(u_factors, ivec2(int(ndl * 256.0), 1), 0).r * s.a;
+                float lit = u_ambient + u_diffuse * ndl;
+                s.rgb = s.rgb * lit + spec;
+            }
+#endif
+            float w = 1.0 - acc.a;
+            acc += w * s;
+#ifdef VISIBILITY
+            int slot = label - u_visibility_base;
+            if (slot >= 0 && slot < 32)
+                seen[slot] += w * s.a;
+#endif
+            if (acc.a >= 0.5 && depth < 0.0)
+                depth = t;
+        }
+        t += u_step;
+    }
+#ifdef VISIBILITY
+    // Outputs indexed by constants only (GLSL 3.30).
+    o_visibility[0] = vec4(seen[0], seen[1], seen[2], seen[3]);
+    o_visibility[1] = vec4(seen[4], seen[5], seen[6], seen[7]);
+    o_visibility[2] = vec4(seen[8], seen[9], seen[10], seen[11]);
+    o_visibility[3] = vec4(seen[12], seen[13], seen[14], seen[15]);
+    o_visibility[4] = vec4(seen[16], seen[17], seen[18], seen[19]);
+    o_visibility[5] = vec4(seen[20], seen[21], seen[22], seen[23]);
+    o_visibility[6] = vec4(seen[24], seen[25], seen[26], seen[27]);
+    o_visibility[7] = vec4(seen[28], seen[29], seen[30], seen[31]);
+#else
+    float rest = 1.0 - acc.a;
+    o_rgba = vec4(min(vec3(1.0), acc.rgb + rest * u_background.rgb * u_background.a),
+                  min(1.0, acc.a + rest * u_background.a));
+    o_depth = depth;
+#endif
+}
