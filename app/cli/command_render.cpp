@@ -104,7 +104,7 @@ void add_render_command(CLI::App &app, Context &context)
                                    "`arbor run` would make (or the session's)");
     sub->add_option("--session", a->session, "Start from this session (arbor-session/1); flags given override it");
     sub->add_option("-o,--output", a->output,
-                    "Image to write (.png or .exr); with --orbit a video (.mp4, .avi) or a folder of PNGs (a "
+                    "Image to write (.png or .exr); with --orbit a video (.mp4, .avi, .gif) or a folder of PNGs (a "
                     "path without suffix)")
         ->required();
     sub->add_option("--orbit", a->orbit, "A turntable of N frames, once round the volume from the view's azimuth")

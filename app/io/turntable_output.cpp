@@ -1,8 +1,10 @@
 #include "turntable_output.hpp"
 
+#include "gif_animation.hpp"
 #include "image_output.hpp"
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
 #include <algorithm>
@@ -10,6 +12,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <system_error>
+#include <vector>
 
 namespace arbor::io {
 
@@ -17,6 +20,7 @@ namespace fs = std::filesystem;
 
 struct TurntableWriter::Video {
     cv::VideoWriter writer;
+    std::unique_ptr<GifAnimation> gif; // .gif: giflib instead of OpenCV
     fs::path partial;
     bool done = false;
 };
@@ -42,20 +46,22 @@ TurntableWriter::TurntableWriter(const fs::path &path, uint32_t width, uint32_t 
             throw std::runtime_error("cannot make the folder " + path.string() + ": " + e.message());
         return;
     }
+    if (!(fps > 0))
+        throw std::invalid_argument("frames per second must be positive");
+    if (suffix == ".gif") {
+        video_ = std::make_unique<Video>();
+        video_->partial = path.parent_path() / ("." + path.stem().string() + ".partial" + suffix);
+        video_->gif = std::make_unique<GifAnimation>(video_->partial, width, height, fps);
+        return;
+    }
     int fourcc = 0;
     if (suffix == ".mp4" || suffix == ".m4v")
         fourcc = cv::VideoWriter::fourcc('m', 'p', '4', 'v');
     else if (suffix == ".avi")
         fourcc = cv::VideoWriter::fourcc('M', 'J', 'P', 'G');
-    else if (suffix == ".gif")
-        throw std::invalid_argument("cannot write " + path.string() +
-                                    ": OpenCV 4.6 writes no GIF; write .mp4, .avi or a folder of PNGs (a path "
-                                    "without suffix), and convert with a tool of your choice");
     else
-        throw std::invalid_argument("cannot write " + path.string() + ": a turntable is .mp4, .avi or a folder of "
-                                    "PNGs (a path without suffix)");
-    if (!(fps > 0))
-        throw std::invalid_argument("frames per second must be positive");
+        throw std::invalid_argument("cannot write " + path.string() + ": a turntable is .mp4, .avi, .gif or a "
+                                    "folder of PNGs (a path without suffix)");
     video_ = std::make_unique<Video>();
     video_->partial = path.parent_path() / ("." + path.stem().string() + ".partial" + suffix);
     if (!video_->writer.open(video_->partial.string(), cv::CAP_FFMPEG, fourcc, fps,
@@ -66,6 +72,7 @@ TurntableWriter::TurntableWriter(const fs::path &path, uint32_t width, uint32_t 
 TurntableWriter::~TurntableWriter()
 {
     if (video_ && !video_->done) {
+        video_->gif.reset();
         video_->writer.release();
         std::error_code e;
         fs::remove(video_->partial, e);
@@ -96,6 +103,13 @@ void TurntableWriter::add(const RenderedImage &frame)
             for (int c = 0; c < 3; ++c) // premultiplied: over black as it is
                 q[2 - c] = static_cast<uint8_t>(std::lround(255.0f * std::clamp(p[c], 0.0f, 1.0f)));
         }
+    if (video_->gif) {
+        std::vector<uint8_t> rgb(3 * std::size_t{width_} * height_);
+        cv::Mat view(static_cast<int>(height_), static_cast<int>(width_), CV_8UC3, rgb.data());
+        cv::cvtColor(bgr, view, cv::COLOR_BGR2RGB);
+        video_->gif->add(rgb);
+        return;
+    }
     video_->writer.write(bgr);
 }
 
@@ -103,7 +117,10 @@ void TurntableWriter::finish()
 {
     if (!video_)
         return;
-    video_->writer.release();
+    if (video_->gif)
+        video_->gif->close();
+    else
+        video_->writer.release();
     std::error_code e;
     if (!fs::exists(video_->partial) || fs::file_size(video_->partial, e) == 0)
         throw std::runtime_error("OpenCV wrote no video to " + path_.string());

@@ -1,6 +1,7 @@
 // turntable_output.hpp - the frames of a turntable as a video (.mp4 with
 // MPEG-4 part 2, .avi with Motion JPEG, through OpenCV's VideoWriter and its
-// FFmpeg backend) or as a folder of PNGs (frame-0001.png ...).  Video frames
+// FFmpeg backend; .gif through giflib, as OpenCV 4.6 writes none) or as a
+// folder of PNGs (frame-0001.png ...).  Video frames
 // are composited over black (the premultiplied colours as they are).  The
 // video appears under its name only when complete: it is written beside it
 // under a temporary name and renamed by finish().

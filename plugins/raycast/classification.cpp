@@ -56,22 +56,30 @@ float ClassTable::max_alpha(uint32_t label, float lo, float hi) const
     return std::max(row[a], row[b + 1 - (1u << level)]);
 }
 
-void BoundaryEmphasis::build(const VoxelGrid &g, const ClassTable &table, double strength)
+void BoundaryEmphasis::sample(const VoxelGrid &g)
 {
-    active_ = strength > 0 && !g.gradient.empty();
+    probes_.clear();
+    if (g.gradient.empty())
+        return;
+    const std::size_t n = g.value.size(), stride = std::max<std::size_t>(1, n / (1 << 18));
+    probes_.reserve(n / stride + 1);
+    for (std::size_t v = 0; v < n; v += stride)
+        probes_.push_back({g.value[v], g.label.empty() ? 0u : g.label[v], g.gradient[v]});
+}
+
+void BoundaryEmphasis::build(const ClassTable &table, double strength)
+{
+    active_ = strength > 0 && !probes_.empty();
     factor_.fill(1.0f);
     if (!active_)
         return;
     std::array<double, 256> histogram{};
     double total = 0;
-    const std::size_t n = g.value.size(), stride = std::max<std::size_t>(1, n / (1 << 18));
-    for (std::size_t v = 0; v < n; v += stride) {
-        const uint32_t label = g.label.empty() ? 0u : g.label[v];
-        if (table.lookup(label, g.value[v])[3] > 0.0f) {
-            histogram[g.gradient[v]] += 1;
+    for (const Probe &p : probes_)
+        if (p.label < table.labels() && table.lookup(p.label, p.value)[3] > 0.0f) {
+            histogram[p.gradient] += 1;
             total += 1;
         }
-    }
     std::size_t reference = 255;
     double seen = 0;
     for (std::size_t q = 0; q < 256 && total > 0; ++q) {

@@ -57,12 +57,22 @@ private:
 // to what is shown), 1 beyond.
 class BoundaryEmphasis {
 public:
-    void build(const VoxelGrid &g, const ClassTable &table, double strength);
+    // Once per volume and labels: 2^18 voxels spread over the grid, kept
+    // side by side, so build() for new transfer functions reads them in
+    // order instead of missing the cache 2^18 times.
+    void sample(const VoxelGrid &g);
+    void build(const ClassTable &table, double strength);
     float factor(uint8_t gradient) const { return factor_[gradient]; }
     bool active() const { return active_; }
     const std::array<float, 256> &factors() const { return factor_; }
 
 private:
+    struct Probe {
+        float value;
+        uint32_t label;
+        uint8_t gradient;
+    };
+    std::vector<Probe> probes_;
     std::array<float, 256> factor_{};
     bool active_ = false;
 };

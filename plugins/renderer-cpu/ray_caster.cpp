@@ -192,6 +192,7 @@ private:
         if (grid_changed) {
             blocks_generation_ = ~uint64_t{0};
             blocks_.build(g, task);
+            boundaries_.sample(g);
             // Large volumes get a half-resolution copy for the coarse pass:
             // an eighth of the memory its rays wander through.
             half_ = VoxelGrid{};
@@ -215,7 +216,7 @@ private:
             occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz});
             if (!half_.value.empty())
                 half_occupancy_.build(half_blocks_, coarse_table_, {half_.nx, half_.ny, half_.nz});
-            boundaries_.build(g, table_, emphasis);
+            boundaries_.build(table_, emphasis);
             occlusion_.clear();
             table_print_ = print;
             step_ = step;

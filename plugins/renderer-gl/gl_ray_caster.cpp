@@ -183,6 +183,7 @@ private:
         if (grid_changed) {
             uploaded_generation_ = ~uint64_t{0};
             blocks_.build(g, task);
+            boundaries_.sample(g);
             gl_->run([&] {
                 if (!volume_uploaded_ || volume_revision_ != request.volume_revision || request.volume_revision == 0 ||
                     volume_pointer_ != request.volume->voxels) {
@@ -204,7 +205,7 @@ private:
             table_.build(tf, step);
             coarse_table_.build(tf, step * raycast::kCoarseStep);
             occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz});
-            boundaries_.build(g, table_, emphasis);
+            boundaries_.build(table_, emphasis);
             gl_->run([&] {
                 textures_.upload_blocks(occupancy_);
                 textures_.upload_tables(table_, coarse_table_, boundaries_, shading);

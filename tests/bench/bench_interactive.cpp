@@ -34,6 +34,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 using namespace arbor;
@@ -132,6 +133,7 @@ int main()
                 kSize, kSize);
     std::printf("%-24s %6s | %10s %10s %9s %9s %8s | %10s %9s %9s %9s %7s\n", "volume", "labels", "Q->coarse",
                 "coarse/s", "full ms", "1st ms", "PSNR", "arbor c/s", "PSNR", "vtk i/s", "PSNR", "ratio");
+    std::vector<std::string> gl_rows; // the OpenGL ray caster, printed after the main table
     for (const fs::path &input : {head, tall}) try {
         pipeline::Pipeline p(registry);
         pipeline::Document d = pipeline::default_document();
@@ -200,6 +202,31 @@ int main()
                     functions->functions->branch_count(), median(step_ms), coarse.fps, median(full_ms), first,
                     coarse.psnr, arbor_global.fps, arbor_global.psnr, vtk_global.fps, vtk_global.psnr,
                     arbor_global.fps / vtk_global.fps);
+        // The OpenGL ray caster on the same request: its first frame (the
+        // uploads), the full pass, the coarse orbit, and how close its full
+        // image is to the CPU ray caster's.
+        try {
+            PluginInstance gl = registry.create("org.arbor.renderer.gl-raycast");
+            t0 = Clock::now();
+            render_image(gl, r, kSize, kSize, nullptr, {}, {ARBOR_RENDER_PASS_COARSE, 0, revision});
+            const double gl_first = ms_since(t0);
+            std::vector<double> gl_full_ms;
+            RenderedImage gl_full;
+            for (int i = 0; i < 3; ++i) {
+                t0 = Clock::now();
+                gl_full = render_image(gl, r, kSize, kSize, nullptr, {}, {ARBOR_RENDER_PASS_FULL, 0, revision});
+                gl_full_ms.push_back(ms_since(t0));
+            }
+            const RenderedImage cpu_full = render_image(cpu, r, kSize, kSize, nullptr, {}, {ARBOR_RENDER_PASS_FULL, 0, revision});
+            const Orbiting gl_coarse = orbit(gl, r, volume.geometry(), ARBOR_RENDER_PASS_COARSE, revision, 10);
+            char row[256];
+            std::snprintf(row, sizeof row, "%-24s | %9.0f %9.0f %10.1f %8.1f | %12.1f  %s", dims, gl_first,
+                          median(gl_full_ms), gl_coarse.fps, gl_coarse.psnr, test::psnr(gl_full, cpu_full),
+                          render_device(gl).name.c_str());
+            gl_rows.push_back(row);
+        } catch (const std::exception &e) {
+            gl_rows.push_back(std::string(dims) + " OpenGL ray caster skipped: " + e.what());
+        }
     } catch (const std::exception &e) {
         std::printf("%-24s skipped: %s\n", input.filename().c_str(), e.what());
     }
@@ -208,5 +235,11 @@ int main()
                 "coarse frame on a new volume (grid, gradients, block statistics); PSNR (dB) of the coarse image "
                 "against the full one.  Global function: frames per second orbiting and PSNR against each "
                 "renderer's own full image; ratio = Arbor / VTK.\n");
+    std::printf("\nOpenGL ray caster, same requests\n%-24s | %9s %9s %10s %8s | %12s  %s\n", "volume", "1st ms",
+                "full ms", "coarse/s", "PSNR", "PSNR vs CPU", "device");
+    for (const std::string &row : gl_rows)
+        std::printf("%s\n", row.c_str());
+    std::printf("1st ms: the first frame (textures uploaded); PSNR vs CPU: its full image against the CPU ray "
+                "caster's (dB).\n");
     return 0;
 }

@@ -56,11 +56,28 @@ class Turntable(unittest.TestCase):
         self.assertEqual([len(f["pass_seconds"]) for f in fine["per_frame"]], [4, 4])
         self.assertEqual((SCRATCH / "coarse.avi").read_bytes()[:4], b"RIFF")
 
+    def test_an_animated_gif_loops_through_every_frame(self):
+        from PIL import Image
+        arbor("render", *PHANTOM, "--orbit", 3, "--quality", "coarse", "--fps", 10, "-o", SCRATCH / "orbit.gif")
+        self.assertEqual((SCRATCH / "orbit.gif").read_bytes()[:6], b"GIF89a")
+        with Image.open(SCRATCH / "orbit.gif") as gif:
+            self.assertEqual(gif.size, (64, 64))
+            self.assertEqual(gif.n_frames, 3)
+            self.assertEqual(gif.info.get("loop"), 0)  # forever
+            self.assertEqual(gif.info.get("duration"), 100)  # ms: 10 frames per second
+            frames = []
+            for i in range(3):
+                gif.seek(i)
+                frames.append(list(gif.convert("RGB").getdata()))
+        self.assertNotEqual(frames[0], frames[1])  # the camera turned
+        self.assertTrue(any(sum(p) > 60 for p in frames[0]))  # something visible, not a black frame
+        self.assertEqual(len(report("orbit.gif")["per_frame"]), 3)
+
     def test_what_it_cannot_write_is_refused_clearly(self):
-        code, _, err = arbor("render", *PHANTOM, "--orbit", 3, "-o", SCRATCH / "orbit.gif", check=False)
+        code, _, err = arbor("render", *PHANTOM, "--orbit", 3, "-o", SCRATCH / "orbit.webm", check=False)
         self.assertNotEqual(code, 0)
-        self.assertIn("GIF", err)
-        self.assertFalse((SCRATCH / "orbit.gif").exists())
+        self.assertIn(".gif", err)
+        self.assertFalse((SCRATCH / "orbit.webm").exists())
         code, _, err = arbor("render", *PHANTOM, "--orbit", 0, "-o", SCRATCH / "none.mp4", check=False)
         self.assertNotEqual(code, 0)
         code, _, err = arbor("render", "--orbit", 3, "-o", SCRATCH / "novolume.mp4", check=False)
