@@ -53,9 +53,16 @@ void ViewFlags::apply(pipeline::ViewChoice &view, const pipeline::PluginCatalog 
         view.renderer = {catalog.find(ARBOR_KIND_RENDERER, renderer_), "", {}};
     else if (!view.renderer.id.empty())
         view.renderer.id = catalog.find(ARBOR_KIND_RENDERER, view.renderer.id);
-    if (name == "auto") // say which and why
-        log_message(ARBOR_LOG_INFO, "", "renderer " + short_name(view.renderer.id) + ": " +
-                                            catalog.renderer_choice().reason);
+    if (name == "auto") { // flags for one renderer choose it; else the machine does; say which and why
+        const std::vector<std::string> flagged = flags_.given_plugins();
+        if (flagged.size() == 1) {
+            view.renderer.id = flagged.front();
+            log_message(ARBOR_LOG_INFO, "", "renderer " + short_name(view.renderer.id) + ": its options were given");
+        } else {
+            log_message(ARBOR_LOG_INFO, "", "renderer " + short_name(view.renderer.id) + ": " +
+                                                catalog.renderer_choice().reason);
+        }
+    }
     flags_.apply(view.renderer);
     if (width_option_->count())
         view.width = width_;

@@ -1,5 +1,6 @@
-"""`arbor render --orbit N`: a turntable as a video or a folder of PNGs, at
-each quality, with its report; and clear refusals.  Run by ctest like
+"""`arbor render --orbit N`: a turntable as a video, an animated GIF or a
+folder of PNGs, at each quality, with its report; clear refusals; and which
+renderer `arbor render` takes by default, and why.  Run by ctest like
 test_cli.py.
 """
 import json
@@ -72,6 +73,20 @@ class Turntable(unittest.TestCase):
         self.assertNotEqual(frames[0], frames[1])  # the camera turned
         self.assertTrue(any(sum(p) > 60 for p in frames[0]))  # something visible, not a black frame
         self.assertEqual(len(report("orbit.gif")["per_frame"]), 3)
+
+    def test_the_default_renderer_is_chosen_for_this_machine_and_says_why(self):
+        _, out, err = arbor("render", *PHANTOM, "-o", SCRATCH / "auto.png")
+        line = next(l for l in err.splitlines() if "info: renderer " in l)
+        hardware = "graphics hardware" in line
+        chosen = "gl-raycast" if hardware else "cpu-raycast"
+        self.assertIn(f"renderer {chosen}:", line)
+        if not hardware:  # llvmpipe here, or no OpenGL at all
+            self.assertTrue("emulated on the CPU" in line or "cannot start" in line, line)
+        self.assertIn(f"rendered by org.arbor.renderer.{chosen}", out)
+        # Options for one renderer choose it.
+        _, out, err = arbor("render", *PHANTOM, "--gl-raycast.jitter", "false", "-o", SCRATCH / "gl.png")
+        self.assertIn("renderer gl-raycast: its options were given", err)
+        self.assertIn("rendered by org.arbor.renderer.gl-raycast", out)
 
     def test_what_it_cannot_write_is_refused_clearly(self):
         code, _, err = arbor("render", *PHANTOM, "--orbit", 3, "-o", SCRATCH / "orbit.webm", check=False)
