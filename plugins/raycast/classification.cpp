@@ -1,10 +1,19 @@
 #include "classification.hpp"
 
+#include <arbor/sdk/error.hpp>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
 
 namespace arbor::raycast {
+
+void require_functions(const VoxelGrid &g, const arbor_tf_set &tf)
+{
+    if (g.max_label >= tf.branch_count)
+        sdk::fail(ARBOR_ERROR_INVALID_ARGUMENT, "label " + std::to_string(g.max_label) + " has no transfer function (" +
+                                                    std::to_string(tf.branch_count) + " given)");
+}
 
 void ClassTable::build(const arbor_tf_set &tf, double step_mm)
 {

@@ -14,6 +14,9 @@
 
 namespace arbor::raycast {
 
+// Throws (INVALID_ARGUMENT) when a label of the grid has no transfer function.
+void require_functions(const VoxelGrid &g, const arbor_tf_set &tf);
+
 class ClassTable {
 public:
     // step_mm: the distance between samples along a ray.

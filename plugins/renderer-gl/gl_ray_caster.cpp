@@ -175,10 +175,7 @@ private:
         const raycast::VoxelGrid &g =
             grid_.update(*request.volume, request.volume_revision, request.labels, request.labels_revision, task);
         const arbor_tf_set &tf = *request.transfer_functions;
-        if (g.max_label >= tf.branch_count)
-            sdk::fail(ARBOR_ERROR_INVALID_ARGUMENT, "label " + std::to_string(g.max_label) +
-                                                        " has no transfer function (" +
-                                                        std::to_string(tf.branch_count) + " given)");
+        raycast::require_functions(g, tf);
         const bool grid_changed = grid_.generation() != uploaded_generation_ || grid_.generation() != before;
         if (grid_changed) {
             uploaded_generation_ = ~uint64_t{0};
