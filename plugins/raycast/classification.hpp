@@ -94,6 +94,9 @@ public:
     }
     bool built() const { return !occlusion_.empty(); }
     void clear() { occlusion_.clear(); }
+    // The half-resolution grid: its size and the occlusion * 255, i fastest.
+    std::array<int64_t, 3> dims() const { return {hx_, hy_, hz_}; }
+    const std::vector<uint8_t> &values() const { return occlusion_; }
 
 private:
     int64_t hx_ = 0, hy_ = 0, hz_ = 0;

@@ -13,6 +13,10 @@ std::vector<sdk::ParamSpec> optical_model_params()
             sdk::ParamSpec::real("diffuse", "Diffuse", 0.7, 0.0, 1.0).group("Shading"),
             sdk::ParamSpec::real("specular", "Specular", 0.25, 0.0, 1.0).group("Shading"),
             sdk::ParamSpec::real("shininess", "Shininess", 24.0, 1.0, 256.0).group("Shading"),
+            sdk::ParamSpec::real("ambient-occlusion", "Ambient occlusion", 0.0, 0.0, 1.0)
+                .group("Shading")
+                .hint("Darken samples by how filled with opacity the space around them is (local ambient "
+                      "occlusion): crevices and folds read without shadows; 0 turns it off"),
             sdk::ParamSpec::real("boundary-emphasis", "Boundary emphasis", 0.8, 0.0, 1.0)
                 .hint("Scale opacity by the steepness of the field (gradient magnitude), so structures read "
                       "as surfaces and homogeneous interiors thin out; 0 turns it off"),

@@ -59,10 +59,6 @@ namespace {
 // The CPU ray caster's own parameters after the shared ones.
 std::vector<sdk::ParamSpec> with_cpu_params(std::vector<sdk::ParamSpec> specs)
 {
-    specs.push_back(sdk::ParamSpec::real("ambient-occlusion", "Ambient occlusion", 0.0, 0.0, 1.0)
-                        .group("Shading")
-                        .hint("Darken samples by how filled with opacity the space around them is (local ambient "
-                              "occlusion): crevices and folds read without shadows; 0 turns it off"));
     specs.push_back(sdk::ParamSpec::integer("threads", "Threads", 0, 0, 256).hint("Worker threads; 0 uses every core"));
     return specs;
 }

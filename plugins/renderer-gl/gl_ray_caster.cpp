@@ -39,7 +39,7 @@ const arbor_plugin_descriptor kGlRayCasterDescriptor = {
     "1.0.0",
     "Arbor",
     "The CPU ray caster's optical model (label-aware post-classification, boundary emphasis, Blinn-Phong, "
-    "empty-space skipping) in a GLSL 3.3 shader, offscreen through EGL; tiles, a coarse pass and "
+    "ambient occlusion, empty-space skipping) in a GLSL 3.3 shader, offscreen through EGL; tiles, a coarse pass and "
     "supersampling (arbor.renderer/2).",
     "",
 };
@@ -207,11 +207,18 @@ private:
                 textures_.upload_blocks(occupancy_);
                 textures_.upload_tables(table_, coarse_table_, boundaries_, shading);
             });
+            occlusion_.clear();
             tf_revision_ = print;
             step_ = step;
             emphasis_ = emphasis;
             shading_ = shading;
         }
+        const double occlusion = params().number("ambient-occlusion");
+        if (occlusion > 0 && !occlusion_.built()) {
+            occlusion_.build(g, table_, boundaries_);
+            gl_->run([&] { textures_.upload_occlusion(occlusion_); });
+        }
+        occlusion_strength_ = occlusion_.built() ? static_cast<float>(occlusion) : 0.0f;
         uploaded_generation_ = grid_.generation();
         return g;
     }
@@ -233,6 +240,8 @@ private:
             variant |= kBoundary;
         if (params().flag("jitter"))
             variant |= kJitter;
+        if (shading.enabled && occlusion_strength_ > 0)
+            variant |= kOcclusion;
         if (seen)
             variant |= kVisibility;
         const GLuint program = programs_.get(variant);
@@ -287,13 +296,15 @@ private:
         const auto vec3 = [&](const char *name, const raycast::Vec3 &v) {
             glUniform3f(at(name), static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
         };
-        glUniform1i(at("u_values"), kValues);
-        glUniform1i(at("u_labels"), kLabels);
-        glUniform1i(at("u_normals"), kNormals);
-        glUniform1i(at("u_blocks"), kBlocks);
-        glUniform1i(at("u_lut"), kLut);
-        glUniform1i(at("u_ranges"), kRanges);
-        glUniform1i(at("u_factors"), kFactors);
+        glUniform1i(at("u_values"), unit::values);
+        glUniform1i(at("u_labels"), unit::labels);
+        glUniform1i(at("u_normals"), unit::normals);
+        glUniform1i(at("u_blocks"), unit::blocks);
+        glUniform1i(at("u_lut"), unit::lut);
+        glUniform1i(at("u_ranges"), unit::ranges);
+        glUniform1i(at("u_factors"), unit::factors);
+        glUniform1i(at("u_occlusion"), unit::occlusion);
+        glUniform1f(at("u_occlusion_strength"), occlusion_strength_);
         glUniform3i(at("u_dims"), static_cast<GLint>(g.nx), static_cast<GLint>(g.ny), static_cast<GLint>(g.nz));
         vec3("u_origin", g.origin);
         float to_voxel[9];
@@ -402,6 +413,8 @@ private:
     raycast::ClassTable table_, coarse_table_;
     raycast::Occupancy occupancy_;
     raycast::BoundaryEmphasis boundaries_;
+    raycast::AmbientOcclusion occlusion_;
+    float occlusion_strength_ = 0.0f;
     raycast::Shading shading_;
     raycast::CoarseRate coarse_rate_;
     uint64_t uploaded_generation_ = ~uint64_t{0};

@@ -59,7 +59,7 @@ GLuint RaycastPrograms::get(unsigned variant)
     std::string header = "#version 330 core\n";
     const std::pair<unsigned, const char *> defines[] = {
         {kLabelled, "LABELLED"}, {kShaded, "SHADED"}, {kBoundary, "BOUNDARY"},
-        {kJitter, "JITTER"},     {kVisibility, "VISIBILITY"}};
+        {kJitter, "JITTER"},     {kVisibility, "VISIBILITY"}, {kOcclusion, "OCCLUSION"}};
     for (const auto &[bit, name] : defines)
         if (variant & bit)
             header += std::string("#define ") + name + "\n";

@@ -1,6 +1,6 @@
 // raycast_programs.hpp - the ray casting shader (resources/shaders,
 // embedded at build time) compiled once per variant: which of LABELLED,
-// SHADED, BOUNDARY, JITTER and VISIBILITY it is built with.
+// SHADED, BOUNDARY, JITTER, VISIBILITY and OCCLUSION it is built with.
 #pragma once
 
 #include "gl_objects.hpp"
@@ -16,6 +16,7 @@ enum Variant : unsigned {
     kBoundary = 1u << 2,
     kJitter = 1u << 3,
     kVisibility = 1u << 4,
+    kOcclusion = 1u << 5,
 };
 
 class RaycastPrograms {

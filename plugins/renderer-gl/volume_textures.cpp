@@ -124,19 +124,33 @@ void VolumeTextures::upload_tables(const raycast::ClassTable &table, const rayca
     check_gl("uploading the lookup tables");
 }
 
+void VolumeTextures::upload_occlusion(const raycast::AmbientOcclusion &occlusion)
+{
+    const auto d = occlusion.dims();
+    if (!occlusion_)
+        occlusion_ = make_texture();
+    glBindTexture(GL_TEXTURE_3D, occlusion_.get());
+    nearest(GL_TEXTURE_3D);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage3D(GL_TEXTURE_3D, 0, GL_R8, static_cast<GLsizei>(d[0]), static_cast<GLsizei>(d[1]),
+                 static_cast<GLsizei>(d[2]), 0, GL_RED, GL_UNSIGNED_BYTE, occlusion.values().data());
+    check_gl("uploading the ambient occlusion");
+}
+
 void VolumeTextures::bind(bool coarse) const
 {
-    const auto at = [](Unit unit, GLenum target, const Texture &t) {
-        glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
+    const auto at = [](unit::Unit u, GLenum target, const Texture &t) {
+        glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(u));
         glBindTexture(target, t.get());
     };
-    at(kValues, GL_TEXTURE_3D, values_);
-    at(kLabels, GL_TEXTURE_3D, labels_);
-    at(kNormals, GL_TEXTURE_3D, normals_);
-    at(kBlocks, GL_TEXTURE_3D, blocks_);
-    at(kLut, GL_TEXTURE_2D, coarse ? coarse_lut_ : lut_);
-    at(kRanges, GL_TEXTURE_2D, ranges_);
-    at(kFactors, GL_TEXTURE_2D, factors_);
+    at(unit::values, GL_TEXTURE_3D, values_);
+    at(unit::labels, GL_TEXTURE_3D, labels_);
+    at(unit::normals, GL_TEXTURE_3D, normals_);
+    at(unit::blocks, GL_TEXTURE_3D, blocks_);
+    at(unit::lut, GL_TEXTURE_2D, coarse ? coarse_lut_ : lut_);
+    at(unit::ranges, GL_TEXTURE_2D, ranges_);
+    at(unit::factors, GL_TEXTURE_2D, factors_);
+    at(unit::occlusion, GL_TEXTURE_3D, occlusion_);
     glActiveTexture(GL_TEXTURE0);
 }
 

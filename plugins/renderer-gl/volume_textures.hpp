@@ -15,7 +15,9 @@
 namespace arbor::glraycast {
 
 // Texture units the shader's samplers read.
-enum Unit : GLint { kValues = 0, kLabels, kNormals, kBlocks, kLut, kRanges, kFactors };
+namespace unit {
+enum Unit : GLint { values = 0, labels, normals, blocks, lut, ranges, factors, occlusion };
+} // namespace unit
 
 class VolumeTextures {
 public:
@@ -27,6 +29,7 @@ public:
     // `table` for the full pass, `coarse` for the coarse pass (its step).
     void upload_tables(const raycast::ClassTable &table, const raycast::ClassTable &coarse,
                        const raycast::BoundaryEmphasis &boundaries, const raycast::Shading &shading);
+    void upload_occlusion(const raycast::AmbientOcclusion &occlusion);
 
     // Binds every texture to its unit; the coarse pass's lookup table
     // when `coarse`.
@@ -34,7 +37,7 @@ public:
     bool labelled() const { return labelled_; }
 
 private:
-    Texture values_, labels_, normals_, blocks_, lut_, coarse_lut_, ranges_, factors_;
+    Texture values_, labels_, normals_, blocks_, lut_, coarse_lut_, ranges_, factors_, occlusion_;
     bool labelled_ = false;
 };
 

@@ -8,7 +8,8 @@
 // normals, early ray termination, empty 8^3 blocks skipped.
 //
 // Variants are chosen when the program is built (llvmpipe runs both sides
-// of a uniform branch): LABELLED, SHADED, BOUNDARY, JITTER, and VISIBILITY
+// of a uniform branch): LABELLED, SHADED, BOUNDARY, JITTER, OCCLUSION (ambient
+// occlusion darkens the lit colour), and VISIBILITY
 // (instead of colour: what each of 32 labels from u_visibility_base
 // contributes, T * alpha, into 8 RGBA targets).
 
@@ -19,6 +20,7 @@ uniform usampler3D u_blocks;  // R8UI per 8^3 block: 1 when every sample in it i
 uniform sampler2D u_lut;      // RGBA32F, a row per label
 uniform sampler2D u_ranges;   // RGBA32F, one row: per label (low, scale, last)
 uniform sampler2D u_factors;  // R32F: row 0 boundary factor per gradient byte, row 1 highlight per ndl * 256
+uniform sampler3D u_occlusion; // R8 at half resolution: how filled with opacity the space around is
 
 uniform ivec3 u_dims;
 uniform vec3 u_origin;        // LPS of voxel (0, 0, 0)
@@ -37,6 +39,7 @@ uniform float u_step;         // mm
 uniform float u_termination;
 uniform vec4 u_background;
 uniform float u_ambient, u_diffuse;
+uniform float u_occlusion_strength;
 uniform int u_visibility_base;
 
 #ifdef VISIBILITY
@@ -145,6 +148,9 @@ void main()
                 float ndl = abs(dot(n, light));
                 float spec = texelFetch(u_factors, ivec2(int(ndl * 256.0), 1), 0).r * s.a;
                 float lit = u_ambient + u_diffuse * ndl;
+#ifdef OCCLUSION
+                lit *= 1.0 - u_occlusion_strength * texelFetch(u_occlusion, c >> 1, 0).r;
+#endif
                 s.rgb = s.rgb * lit + spec;
             }
 #endif

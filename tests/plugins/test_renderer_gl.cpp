@@ -1,6 +1,7 @@
 // The OpenGL ray caster against the CPU ray caster, which renders the same
 // optical model: the same scenes through both, compared by PSNR (unshaded
-// and shaded, labelled, perspective and orthographic, the coarse pass),
+// and shaded, with ambient occlusion, labelled, perspective and
+// orthographic, the coarse pass),
 // visibility per label, tiles that join, supersampling, cancellation, and
 // the device it says it renders on.  On this machine that is Mesa's
 // llvmpipe through EGL, with no X server; the GL pictures are compared
@@ -165,6 +166,16 @@ TEST(GlRayCaster, MatchesTheCpuRayCasterShadedWithBoundaryEmphasisAndJitter)
         }
     EXPECT_GT(both, gl.depth.size() / 10);
     EXPECT_LT(worst, 2.0) << "mm";
+}
+
+TEST(GlRayCaster, MatchesTheCpuRayCasterWithAmbientOcclusion)
+{
+    Pair s;
+    const RenderedImage plain = s.render(s.gl);
+    s.set("ambient-occlusion", "0.8");
+    const RenderedImage gl = s.render(s.gl), cpu = s.render(s.cpu);
+    EXPECT_GT(test::psnr(gl, cpu), 45.0);
+    EXPECT_LT(test::psnr(gl, plain), 40.0) << "the occlusion darkened nothing";
 }
 
 TEST(GlRayCaster, MeasuresTheVisibilityOfEachLabelAsTheCpuRayCasterDoes)
