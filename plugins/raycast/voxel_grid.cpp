@@ -150,6 +150,7 @@ const VoxelGrid &VoxelGridCache::update(const arbor_volume &v, uint64_t volume_r
     if (v.voxels != voxels_ || volume_revision != volume_revision_ || volume_revision == 0 || dims != dims_) {
         voxels_ = nullptr; // a cancelled rebuild leaves the grid stale
         ++generation_;
+        ++values_generation_;
         VoxelGrid &g = grid_;
         g.nx = dims[0];
         g.ny = dims[1];

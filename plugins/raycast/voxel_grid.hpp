@@ -49,11 +49,13 @@ public:
     // rebuilt).  On all cores, cancellable.
     const VoxelGrid &update(const arbor_volume &volume, uint64_t volume_revision, const arbor_label_map *labels,
                             uint64_t labels_revision, const sdk::Task &task);
-    // Changes whenever update changed the grid.
+    // Changes whenever update changed the grid; values_generation() only
+    // when the values (and normals) changed, not for new labels alone.
     uint64_t generation() const { return generation_; }
+    uint64_t values_generation() const { return values_generation_; }
 
 private:
-    uint64_t generation_ = 0;
+    uint64_t generation_ = 0, values_generation_ = 0;
     VoxelGrid grid_;
     const void *voxels_ = nullptr, *labels_ = nullptr;
     uint64_t volume_revision_ = ~uint64_t{0}, labels_revision_ = ~uint64_t{0};

@@ -135,7 +135,6 @@ public:
             if (!cast(request, g, grid, task, 0, rgba.data(), depth.data(), nullptr))
                 return;
             if (want_visibility) {
-                std::vector<float> seen(4 * rays);
                 for (uint32_t base = 0; base < table_.labels(); base += kLabelsPerVisibilityDraw)
                     if (!cast(request, g, grid, task, base, nullptr, nullptr, &visibility))
                         return;
@@ -171,26 +170,23 @@ private:
     // (on the calling thread, all cores), then the textures (GL thread).
     const raycast::VoxelGrid &prepare(const arbor_render_request_v2 &request, const sdk::Task &task)
     {
-        const uint64_t before = grid_.generation();
         const raycast::VoxelGrid &g =
             grid_.update(*request.volume, request.volume_revision, request.labels, request.labels_revision, task);
         const arbor_tf_set &tf = *request.transfer_functions;
         raycast::require_functions(g, tf);
-        const bool grid_changed = grid_.generation() != uploaded_generation_ || grid_.generation() != before;
+        const bool grid_changed = grid_.generation() != uploaded_generation_;
         if (grid_changed) {
             uploaded_generation_ = ~uint64_t{0};
             blocks_.build(g, task);
             boundaries_.sample(g);
             gl_->run([&] {
-                if (!volume_uploaded_ || volume_revision_ != request.volume_revision || request.volume_revision == 0 ||
-                    volume_pointer_ != request.volume->voxels) {
+                if (grid_.values_generation() != uploaded_values_) { // not for new labels alone
+                    uploaded_values_ = ~uint64_t{0};
                     textures_.upload_volume(g);
-                    volume_uploaded_ = true;
+                    uploaded_values_ = grid_.values_generation();
                 }
                 textures_.upload_labels(g);
             });
-            volume_revision_ = request.volume_revision;
-            volume_pointer_ = request.volume->voxels;
         }
         const double step = params().number("sample-distance") * g.min_spacing;
         const double emphasis = params().number("boundary-emphasis");
@@ -418,10 +414,8 @@ private:
     raycast::Shading shading_;
     raycast::CoarseRate coarse_rate_;
     uint64_t uploaded_generation_ = ~uint64_t{0};
+    uint64_t uploaded_values_ = ~uint64_t{0};
     uint64_t tf_revision_ = 0;
-    uint64_t volume_revision_ = 0;
-    const void *volume_pointer_ = nullptr;
-    bool volume_uploaded_ = false;
     double step_ = -1.0, emphasis_ = -1.0;
 };
 

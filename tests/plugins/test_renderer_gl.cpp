@@ -274,5 +274,17 @@ TEST(GlRayCaster, NewTransferFunctionsUnderANewRevisionAreRendered)
     EXPECT_GT(test::psnr(b, s.render(s.cpu)), 45.0);
 }
 
+TEST(GlRayCaster, NewLabelsUnderANewRevisionAreRendered)
+{
+    Pair s;
+    const RenderedImage a = s.render(s.gl);
+    for (uint32_t &l : s.labels) // the two halves of the ball swap colours
+        l = l == 1 ? 2u : l == 2 ? 1u : l;
+    ++s.request.labels_revision;
+    const RenderedImage b = s.render(s.gl);
+    EXPECT_LT(test::psnr(a, b), 35.0);
+    EXPECT_GT(test::psnr(b, s.render(s.cpu)), 45.0);
+}
+
 } // namespace
 } // namespace arbor
