@@ -1,6 +1,7 @@
 #include "volume_textures.hpp"
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -19,8 +20,8 @@ void nearest(GLenum target)
         glTexParameteri(target, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
 }
 
-void texture_3d(Texture &t, GLint internal, GLenum format, GLenum type, const raycast::VoxelGrid &g, const void *data,
-                bool linear)
+void texture_3d(Texture &t, GLint internal, GLenum format, GLenum type, const std::array<int64_t, 3> &dims,
+                const void *data, bool linear = false)
 {
     if (!t)
         t = make_texture();
@@ -31,8 +32,13 @@ void texture_3d(Texture &t, GLint internal, GLenum format, GLenum type, const ra
         glTexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexImage3D(GL_TEXTURE_3D, 0, internal, static_cast<GLsizei>(g.nx), static_cast<GLsizei>(g.ny),
-                 static_cast<GLsizei>(g.nz), 0, format, type, data);
+    glTexImage3D(GL_TEXTURE_3D, 0, internal, static_cast<GLsizei>(dims[0]), static_cast<GLsizei>(dims[1]),
+                 static_cast<GLsizei>(dims[2]), 0, format, type, data);
+}
+
+std::array<int64_t, 3> dims_of(const raycast::VoxelGrid &g)
+{
+    return {g.nx, g.ny, g.nz};
 }
 
 void texture_2d(Texture &t, GLint internal, GLsizei w, GLsizei h, GLenum format, const float *data)
@@ -54,7 +60,7 @@ void VolumeTextures::upload_volume(const raycast::VoxelGrid &g)
         throw std::runtime_error("the volume (" + std::to_string(g.nx) + " x " + std::to_string(g.ny) + " x " +
                                  std::to_string(g.nz) + ") exceeds this OpenGL's 3D texture size of " +
                                  std::to_string(largest) + "; the CPU ray caster has no such limit");
-    texture_3d(values_, GL_R32F, GL_RED, GL_FLOAT, g, g.value.data(), true);
+    texture_3d(values_, GL_R32F, GL_RED, GL_FLOAT, dims_of(g), g.value.data(), true);
     check_gl("uploading the voxel values");
     // Normal xyz and gradient magnitude (shifted to a signed byte) together:
     // one fetch per sample.
@@ -65,7 +71,7 @@ void VolumeTextures::upload_volume(const raycast::VoxelGrid &g)
         packed[4 * v + 2] = g.normal[3 * v + 2];
         packed[4 * v + 3] = static_cast<int8_t>(static_cast<int>(g.gradient[v]) - 128);
     }
-    texture_3d(normals_, GL_RGBA8I, GL_RGBA_INTEGER, GL_BYTE, g, packed.data(), false);
+    texture_3d(normals_, GL_RGBA8I, GL_RGBA_INTEGER, GL_BYTE, dims_of(g), packed.data());
     check_gl("uploading the normals");
 }
 
@@ -78,23 +84,16 @@ void VolumeTextures::upload_labels(const raycast::VoxelGrid &g)
     }
     if (g.max_label < 65536) {
         std::vector<uint16_t> small(g.label.begin(), g.label.end());
-        texture_3d(labels_, GL_R16UI, GL_RED_INTEGER, GL_UNSIGNED_SHORT, g, small.data(), false);
+        texture_3d(labels_, GL_R16UI, GL_RED_INTEGER, GL_UNSIGNED_SHORT, dims_of(g), small.data());
     } else {
-        texture_3d(labels_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, g, g.label.data(), false);
+        texture_3d(labels_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, dims_of(g), g.label.data());
     }
     check_gl("uploading the label map");
 }
 
 void VolumeTextures::upload_blocks(const raycast::Occupancy &occupancy)
 {
-    const auto b = occupancy.blocks();
-    if (!blocks_)
-        blocks_ = make_texture();
-    glBindTexture(GL_TEXTURE_3D, blocks_.get());
-    nearest(GL_TEXTURE_3D);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexImage3D(GL_TEXTURE_3D, 0, GL_R8UI, static_cast<GLsizei>(b[0]), static_cast<GLsizei>(b[1]),
-                 static_cast<GLsizei>(b[2]), 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, occupancy.flags().data());
+    texture_3d(blocks_, GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, occupancy.blocks(), occupancy.flags().data());
     check_gl("uploading the empty blocks");
 }
 
@@ -126,14 +125,7 @@ void VolumeTextures::upload_tables(const raycast::ClassTable &table, const rayca
 
 void VolumeTextures::upload_occlusion(const raycast::AmbientOcclusion &occlusion)
 {
-    const auto d = occlusion.dims();
-    if (!occlusion_)
-        occlusion_ = make_texture();
-    glBindTexture(GL_TEXTURE_3D, occlusion_.get());
-    nearest(GL_TEXTURE_3D);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexImage3D(GL_TEXTURE_3D, 0, GL_R8, static_cast<GLsizei>(d[0]), static_cast<GLsizei>(d[1]),
-                 static_cast<GLsizei>(d[2]), 0, GL_RED, GL_UNSIGNED_BYTE, occlusion.values().data());
+    texture_3d(occlusion_, GL_R8, GL_RED, GL_UNSIGNED_BYTE, occlusion.dims(), occlusion.values().data());
     check_gl("uploading the ambient occlusion");
 }
 
