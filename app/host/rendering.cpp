@@ -54,8 +54,8 @@ RenderDevice render_device(const PluginInstance &renderer)
         return device;
     arbor_render_device d{};
     d.struct_size = sizeof d;
-    if (table->describe(renderer.get(), &d) != ARBOR_OK)
-        return device;
+    if (const arbor_status status = table->describe(renderer.get(), &d); status != ARBOR_OK)
+        throw PluginError(status, renderer.id() + " cannot say what it renders on: " + renderer.last_error());
     if (d.kind == ARBOR_DEVICE_CPU || d.kind == ARBOR_DEVICE_GPU || d.kind == ARBOR_DEVICE_SOFTWARE_GPU)
         device.kind = d.kind;
     if (d.name)

@@ -42,7 +42,8 @@ void render_region(PluginInstance &renderer, const arbor_render_request &request
 bool renders_passes(const PluginInstance &renderer);
 
 // What a renderer renders on (arbor.render-device/1); a renderer that does
-// not say counts as rendering on the CPU.
+// not offer it counts as rendering on the CPU.  Throws PluginError when the
+// renderer cannot find out (an OpenGL renderer without a context).
 struct RenderDevice {
     arbor_device_kind kind = ARBOR_DEVICE_CPU;
     std::string name; // "" when the renderer does not say

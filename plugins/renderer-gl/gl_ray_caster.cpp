@@ -66,22 +66,13 @@ public:
     explicit GlRayCaster(const arbor_host *host)
         : Renderer(kGlRayCasterDescriptor, host, raycast::optical_model_params(), Interface::v2)
     {
-        gl_ = std::make_unique<GlThread>();
-        const EglContext &c = gl_->context();
-        set_device(c.software() ? ARBOR_DEVICE_SOFTWARE_GPU : ARBOR_DEVICE_GPU, c.description());
-        gl_->run([&] {
-            GLuint vao = 0;
-            glGenVertexArrays(1, &vao);
-            vao_ = VertexArray(vao);
-            GLuint fbo = 0;
-            glGenFramebuffers(1, &fbo);
-            fbo_ = Framebuffer(fbo);
-            check_gl("creating the framebuffer");
-        });
+        offer_device(); // the context is made when first needed: creating an instance stays cheap
     }
 
     ~GlRayCaster() override
     {
+        if (!gl_)
+            return;
         gl_->run([&] { // GL names die on the thread their context is current on
             textures_ = VolumeTextures{};
             programs_.clear();
@@ -94,6 +85,7 @@ public:
 
     void render_region(const arbor_render_request_v2 &request, arbor_image &out, const sdk::Task &task) override
     {
+        start();
         const raycast::VoxelGrid &g = prepare(request, task);
         const bool coarse = request.pass == ARBOR_RENDER_PASS_COARSE;
         const uint32_t sample = request.pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? request.sample_index : 0;
@@ -165,7 +157,31 @@ public:
                 out.label_visibility[l] = l < visibility.size() ? visibility[l] : 0.0;
     }
 
+    void find_device() override { start(); }
+
 private:
+    // The OpenGL thread, context and framebuffer, made on first use; what
+    // failed is said then (no EGL, no OpenGL 3.3), and again at each try.
+    void start()
+    {
+        if (gl_)
+            return;
+        auto gl = std::make_unique<GlThread>();
+        gl->run([&] {
+            GLuint vao = 0, fbo = 0;
+            glGenVertexArrays(1, &vao);
+            glGenFramebuffers(1, &fbo);
+            VertexArray v(vao);
+            Framebuffer f(fbo);
+            check_gl("creating the framebuffer"); // on failure v and f die here, on this thread
+            vao_ = std::move(v);
+            fbo_ = std::move(f);
+        });
+        const EglContext &c = gl->context();
+        set_device(c.software() ? ARBOR_DEVICE_SOFTWARE_GPU : ARBOR_DEVICE_GPU, c.description());
+        gl_ = std::move(gl);
+    }
+
     // The grid, block statistics and tables up to date with the request
     // (on the calling thread, all cores), then the textures (GL thread).
     const raycast::VoxelGrid &prepare(const arbor_render_request_v2 &request, const sdk::Task &task)

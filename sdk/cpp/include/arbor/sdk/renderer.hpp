@@ -58,17 +58,22 @@ public:
     }
 
 protected:
-    // arbor.render-device/1: say what this instance renders on (call it in
-    // the constructor or before the host asks).
+    // arbor.render-device/1: say what this instance renders on.  Either
+    // call set_device in the constructor, or call offer_device there and
+    // override find_device to find it out when the host first asks (it
+    // calls set_device; an exception becomes the call's error).
     void set_device(arbor_device_kind kind, std::string name)
     {
         device_kind_ = kind;
         device_name_ = std::move(name);
+        device_offered_ = true;
     }
+    void offer_device() { device_offered_ = true; }
+    virtual void find_device() { fail(ARBOR_ERROR_INTERNAL, "the renderer did not say what it renders on"); }
 
     const void *find_interface(std::string_view id) const override
     {
-        if (id == ARBOR_INTERFACE_RENDER_DEVICE && device_kind_ != 0)
+        if (id == ARBOR_INTERFACE_RENDER_DEVICE && device_offered_)
             return &device_table_;
         if (id == ARBOR_INTERFACE_RENDERER)
             return &table_;
@@ -157,15 +162,19 @@ private:
     {
         if (!plugin || !out || out->struct_size < sizeof(arbor_render_device))
             return ARBOR_ERROR_INVALID_ARGUMENT;
-        const auto &self = *static_cast<const Renderer *>(static_cast<const Instance *>(plugin->plugin_data));
-        out->kind = self.device_kind_;
-        out->name = self.device_name_.c_str();
-        return ARBOR_OK;
+        return guarded(plugin, [&](Instance &instance) {
+            auto &self = static_cast<Renderer &>(instance);
+            if (self.device_kind_ == 0)
+                self.find_device();
+            out->kind = self.device_kind_;
+            out->name = self.device_name_.c_str();
+        });
     }
 
     Interface offered_;
     arbor_device_kind device_kind_ = 0;
     std::string device_name_;
+    bool device_offered_ = false;
     arbor_render_device_v1 device_table_{};
     arbor_renderer_v1 table_{};
     arbor_renderer_v2 table2_{};
