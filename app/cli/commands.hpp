@@ -20,5 +20,6 @@ void add_render_command(CLI::App &app, Context &context);
 void add_run_command(CLI::App &app, Context &context);
 void add_denoise_study_command(CLI::App &app, Context &context);
 void add_dicom_command(CLI::App &app, Context &context);
+void add_view_command(CLI::App &app, Context &context);
 
 } // namespace arbor::cli

@@ -25,21 +25,6 @@ std::vector<std::string> split_list(const std::string &list)
     return out;
 }
 
-pipeline::PluginSetting parse_plugin_spec(const std::string &spec, const std::string &flag)
-{
-    pipeline::PluginSetting s;
-    const std::size_t colon = spec.find(':');
-    s.id = spec.substr(0, colon);
-    if (colon != std::string::npos)
-        for (const std::string &pair : split_list(spec.substr(colon + 1))) {
-            const std::size_t eq = pair.find('=');
-            if (eq == std::string::npos || eq == 0)
-                throw std::invalid_argument(flag + " " + spec + ": '" + pair + "' is not key=value");
-            s.params[pair.substr(0, eq)] = pair.substr(eq + 1);
-        }
-    return s;
-}
-
 void InputFlags::add_to(CLI::App &command, Context &context)
 {
     registry_ = &context.registry;

@@ -58,9 +58,7 @@ private:
     PluginFlags flags_;
 };
 
-// "gaussian:sigma=1.5,radius=2" -> the setting (id as given); throws
-// std::invalid_argument for a pair that is not key=value.
-pipeline::PluginSetting parse_plugin_spec(const std::string &spec, const std::string &flag);
+using pipeline::parse_plugin_spec; // "gaussian:sigma=1.5,radius=2" -> the setting (id as given)
 
 // "a,b , c" -> {"a", "b", "c"}.
 std::vector<std::string> split_list(const std::string &list);

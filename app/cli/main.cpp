@@ -55,6 +55,7 @@ int main(int argc, char **argv)
     cli::add_tf_command(app, context);
     cli::add_render_command(app, context);
     cli::add_run_command(app, context);
+    cli::add_view_command(app, context);
     cli::add_denoise_study_command(app, context);
     cli::add_pairs_command(app, context);
     cli::add_plugins_command(app, context);

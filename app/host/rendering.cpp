@@ -179,14 +179,18 @@ arbor_camera orbit_camera(const Geometry &g, const Orbit &orbit)
     c.view_angle = orbit.view_angle;
     c.parallel_scale = radius / zoom;
     const double distance = orbit.perspective ? radius / std::sin(orbit.view_angle * M_PI / 360.0) / zoom : 3 * radius;
-    for (int a = 0; a < 3; ++a) {
-        c.focal_point[a] = centre[a];
-        c.position[a] = centre[a] + distance * towards_camera[a];
-    }
     // Superior is up, tilted with the elevation.
     c.view_up[0] = -std::sin(az) * std::sin(el);
     c.view_up[1] = std::cos(az) * std::sin(el);
     c.view_up[2] = std::cos(el);
+    // The camera's right: the view direction (-towards_camera) x up.
+    const std::array<double, 3> right{-towards_camera[1] * c.view_up[2] + towards_camera[2] * c.view_up[1],
+                                      -towards_camera[2] * c.view_up[0] + towards_camera[0] * c.view_up[2],
+                                      -towards_camera[0] * c.view_up[1] + towards_camera[1] * c.view_up[0]};
+    for (int a = 0; a < 3; ++a) {
+        c.focal_point[a] = centre[a] + orbit.pan_right * right[a] + orbit.pan_up * c.view_up[a];
+        c.position[a] = c.focal_point[a] + distance * towards_camera[a];
+    }
     return c;
 }
 

@@ -58,6 +58,9 @@ struct Orbit {
     double azimuth = 0.0, elevation = 0.0, zoom = 1.0;
     bool perspective = true;
     double view_angle = 30.0; // degrees
+    // The focal point moved off the centre, in mm along the camera's right
+    // and up directions (a pan, as a middle-button drag does in 3D Slicer).
+    double pan_right = 0.0, pan_up = 0.0;
     bool operator==(const Orbit &) const = default;
 };
 

@@ -18,6 +18,35 @@ Document default_document()
     return d;
 }
 
+PluginSetting parse_plugin_spec(const std::string &spec, const std::string &what)
+{
+    PluginSetting s;
+    const std::size_t colon = spec.find(':');
+    s.id = spec.substr(0, colon);
+    if (s.id.empty())
+        throw std::invalid_argument(what + " '" + spec + "': no plugin named");
+    if (colon == std::string::npos)
+        return s;
+    const std::string rest = spec.substr(colon + 1);
+    if (rest.find_first_not_of(" \t") == std::string::npos)
+        return s;
+    std::size_t start = 0;
+    while (start <= rest.size()) {
+        const std::size_t comma = rest.find(',', start);
+        std::string pair = rest.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        pair.erase(0, pair.find_first_not_of(" \t"));
+        pair.erase(pair.find_last_not_of(" \t") + 1);
+        const std::size_t eq = pair.find('=');
+        if (eq == std::string::npos || eq == 0)
+            throw std::invalid_argument(what + " " + spec + ": '" + pair + "' is not key=value");
+        s.params[pair.substr(0, eq)] = pair.substr(eq + 1);
+        if (comma == std::string::npos)
+            break;
+        start = comma + 1;
+    }
+    return s;
+}
+
 std::string CutChoice::describe() const
 {
     std::ostringstream s;

@@ -35,6 +35,11 @@ struct PluginSetting {
     bool operator==(const PluginSetting &) const = default;
 };
 
+// "gaussian:sigma=1.5" -> {id "gaussian", params {sigma: "1.5"}}, the form
+// --filter and the workstation's `set filter` take; `what` names the text
+// in messages ("--filter").  Throws std::invalid_argument.
+PluginSetting parse_plugin_spec(const std::string &spec, const std::string &what);
+
 // The built-in synthetic head (core/phantom.hpp), the data that needs no file.
 struct PhantomInput {
     std::string kind = "head";

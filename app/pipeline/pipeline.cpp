@@ -1,9 +1,11 @@
 #include "pipeline.hpp"
 
+#include "preview_functions.hpp"
 #include "render_scene.hpp"
 #include "stage_compute.hpp"
 
 #include "core/cancelled.hpp"
+#include "core/thread_priority.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -176,13 +178,19 @@ std::shared_ptr<Job> Pipeline::ensure_locked(Stage stage, const std::shared_ptr<
         upstream.push_back(ensure_locked(u, document));
     auto job = std::make_shared<Job>(stage, ++job_counter_, options_.progress, options_.log);
     slot.active.emplace_back(key, job);
-    workers_.push_back({job, std::thread(&Pipeline::execute, this, job, document, std::move(upstream), key)});
+    auto exited = std::make_shared<std::atomic<bool>>(false);
+    workers_.push_back({job, exited,
+                        std::thread([this, job, document, upstream = std::move(upstream), key, exited]() mutable {
+                            execute(job, std::move(document), std::move(upstream), key);
+                            exited->store(true, std::memory_order_release);
+                        })});
     return job;
 }
 
 void Pipeline::execute(const std::shared_ptr<Job> &job, std::shared_ptr<const Document> document,
                        std::vector<std::shared_ptr<Job>> upstream, StageKey key)
 {
+    lower_thread_priority(options_.worker_nice);
     Slot &slot = *slots_[index_of(job->stage())];
     const auto leave = [&] {
         std::lock_guard lock(mutex_);
@@ -197,10 +205,12 @@ void Pipeline::execute(const std::shared_ptr<Job> &job, std::shared_ptr<const Do
         throw_if_stopped(job->stop_token());
         job->start();
         std::shared_ptr<const void> result = compute_stage(job->stage(), context);
+        std::shared_ptr<const void> replaced; // freed below, not under the lock (it may be gigabytes)
         {
             std::lock_guard lock(mutex_);
             ++slot.runs;
             if (job->serial() > slot.result_serial) {
+                replaced = std::move(slot.result);
                 slot.result = result;
                 slot.key = key;
                 slot.result_serial = job->serial();
@@ -220,15 +230,65 @@ void Pipeline::execute(const std::shared_ptr<Job> &job, std::shared_ptr<const Do
 
 void Pipeline::reap_locked()
 {
-    // A worker's last step is ending its job; joining it then is immediate.
+    // Only threads that are through: joining is then immediate (a front's
+    // thread calls this, under the lock every accessor takes).
     for (auto it = workers_.begin(); it != workers_.end();) {
-        if (it->job->ended()) {
+        if (it->exited->load(std::memory_order_acquire)) {
             it->thread.join();
             it = workers_.erase(it);
         } else {
             ++it;
         }
     }
+}
+
+void Pipeline::preview_pass(RenderedImage &frame, const FramePass &pass, std::stop_token stop)
+{
+    const auto filtered = run<Stage::Filter>();
+    const Document d = document();
+    throw_if_stopped(stop);
+    const std::unique_ptr<TransferFunctions> functions = preview_functions(*filtered);
+    const arbor_camera camera = orbit_camera(filtered->volume->geometry(), d.view.orbit);
+    const arbor_volume view = filtered->volume->view();
+    arbor_render_request request{};
+    request.struct_size = sizeof request;
+    request.volume = &view;
+    request.labels = nullptr; // every voxel the one function
+    request.transfer_functions = &functions->record();
+    request.camera = &camera;
+    for (std::size_t i = 0; i < 4; ++i)
+        request.background[i] = static_cast<float>(d.view.background[i]);
+    request.volume_revision = filtered->revision;
+    Slot &slot = *slots_[index_of(Stage::Render)];
+    std::lock_guard busy(slot.busy);
+    PluginSlot::Lease renderer = slot.plugins.lease(d.view.renderer, nullptr);
+    frame.width = d.view.width;
+    frame.height = d.view.height;
+    frame.rgba.assign(std::size_t{frame.width} * frame.height * 4, 0.0f);
+    frame.depth.assign(std::size_t{frame.width} * frame.height, std::numeric_limits<float>::infinity());
+    render_region(*renderer, request, frame, {}, pass, nullptr, std::move(stop));
+}
+
+arbor_camera Pipeline::camera() const
+{
+    const auto filtered = latest<Stage::Filter>();
+    if (!filtered)
+        throw std::logic_error("no volume yet");
+    return camera_for(document(), *filtered);
+}
+
+arbor_camera Pipeline::camera_for(const Document &d, const FilterResult &filtered) const
+{
+    const auto last = latest<Stage::Render>();
+    if (last && is_current(Stage::Render))
+        return last->camera;
+    Orbit orbit = d.view.orbit;
+    if (d.view.auto_view && last && last->viewpoint) {
+        orbit.azimuth = last->viewpoint->azimuth;
+        orbit.elevation = last->viewpoint->elevation;
+    }
+    orbit.zoom = (last && last->framing ? last->framing->scale : 1.0) * (orbit.zoom > 0 ? orbit.zoom : 1.0);
+    return orbit_camera(filtered.volume->geometry(), orbit);
 }
 
 void Pipeline::render_pass(RenderedImage &frame, const FramePass &pass, std::stop_token stop)
@@ -245,18 +305,7 @@ void Pipeline::render_pass(RenderedImage &frame, const FramePass &pass, std::sto
         functions = last->functions;
     else if (last && last->balance && last->balance->scale.size() == functions->branch_count())
         functions = functions->with_optical_depth(last->balance->scale);
-    arbor_camera camera;
-    if (current) {
-        camera = last->camera;
-    } else {
-        Orbit orbit = d.view.orbit;
-        if (d.view.auto_view && last && last->viewpoint) {
-            orbit.azimuth = last->viewpoint->azimuth;
-            orbit.elevation = last->viewpoint->elevation;
-        }
-        orbit.zoom = (last && last->framing ? last->framing->scale : 1.0) * (orbit.zoom > 0 ? orbit.zoom : 1.0);
-        camera = orbit_camera(filtered->volume->geometry(), orbit);
-    }
+    const arbor_camera camera = camera_for(d, *filtered);
     RenderScene scene(*filtered, *labels, functions->branch_count(), d.view.background);
     scene.request.transfer_functions = &functions->record();
     scene.request.camera = &camera;

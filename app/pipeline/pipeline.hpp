@@ -28,6 +28,7 @@
 #include "stage_results.hpp"
 
 #include <array>
+#include <atomic>
 #include <filesystem>
 #include <list>
 #include <memory>
@@ -46,6 +47,9 @@ struct PipelineOptions {
     // (the log then goes to the host log).
     ProgressSink *progress = nullptr;
     LogSink *log = nullptr;
+    // Added to the nice value of every job's thread (core/thread_priority.hpp):
+    // the workstation's UI stays responsive while jobs use every core.
+    int worker_nice = 0;
 };
 
 class Pipeline {
@@ -103,6 +107,15 @@ public:
     // `frame` is resized to the view (and must hold the previous pass for
     // SUPERSAMPLE).  Throws Cancelled when stopped.
     void render_pass(RenderedImage &frame, const FramePass &pass, std::stop_token stop = {});
+    // A pass that needs no topology: the filtered volume (imported and
+    // filtered first, if stale) with one transfer function from its values
+    // (preview_functions.hpp), no labels, from the document's orbit; for
+    // the seconds while the contour tree is computed.  Throws Cancelled.
+    void preview_pass(RenderedImage &frame, const FramePass &pass, std::stop_token stop = {});
+
+    // The camera render_pass renders from now (the latest render's when it
+    // is current); throws std::logic_error before there is a volume.
+    arbor_camera camera() const;
 
     // Per stage: how many times it was computed (not served from its cache).
     std::array<uint64_t, kStageCount> stage_runs() const;
@@ -111,6 +124,9 @@ private:
     struct Slot; // per stage: result, active jobs, plugin instances, the lock its jobs take
     struct Worker {
         std::shared_ptr<Job> job;
+        // Set as the thread's last act, after its job's inputs were let go:
+        // joining it then cannot wait on freeing a large result.
+        std::shared_ptr<std::atomic<bool>> exited;
         std::thread thread;
     };
 
@@ -118,6 +134,7 @@ private:
     void execute(const std::shared_ptr<Job> &job, std::shared_ptr<const Document> document,
                  std::vector<std::shared_ptr<Job>> upstream, StageKey key);
     std::shared_ptr<const void> latest_result(Stage stage) const;
+    arbor_camera camera_for(const Document &document, const FilterResult &filtered) const;
     void reap_locked();
     void update(const Document &resolved);
     template <class T> void set_part(T Document::*part, const T &value);

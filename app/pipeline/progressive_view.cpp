@@ -2,6 +2,7 @@
 
 #include "core/cancelled.hpp"
 #include "core/stopwatch.hpp"
+#include "core/thread_priority.hpp"
 
 namespace arbor::pipeline {
 
@@ -79,6 +80,7 @@ void ProgressiveView::publish(std::shared_ptr<const Frame> frame)
 
 void ProgressiveView::loop()
 {
+    lower_thread_priority(options_.worker_nice);
     uint64_t done = 0;            // the touch the latest frame answers
     uint32_t refinement = 0;      // passes after the coarse one for it: 1 full, then supersamples
     RenderedImage image;
@@ -114,7 +116,14 @@ void ProgressiveView::loop()
         try {
             if (coarse) {
                 frame->pass = ARBOR_RENDER_PASS_COARSE;
-                pipeline_.render_pass(image, {ARBOR_RENDER_PASS_COARSE, 0, 0}, stop);
+                // While the tree is computed (a new scan or filter), the
+                // volume from its values at once; the full render after it
+                // waits for the tree.
+                frame->preview = options_.preview && !pipeline_.is_current(Stage::ContourTree);
+                if (frame->preview)
+                    pipeline_.preview_pass(image, {ARBOR_RENDER_PASS_COARSE, 0, 0}, stop);
+                else
+                    pipeline_.render_pass(image, {ARBOR_RENDER_PASS_COARSE, 0, 0}, stop);
                 done = touch;
                 refinement = 0;
             } else if (refinement == 0) {

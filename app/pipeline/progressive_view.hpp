@@ -25,6 +25,10 @@ public:
     struct Options {
         std::chrono::milliseconds idle{150};
         uint32_t supersamples = 4; // passes after the full frame; 0: none
+        int worker_nice = 0;       // added to the rendering thread's nice value
+        // While the contour tree is computed, a preview from the values
+        // (Pipeline::preview_pass) instead of waiting for it.
+        bool preview = false;
     };
     struct Frame {
         RenderedImage image;
@@ -32,6 +36,9 @@ public:
         uint32_t samples = 0; // SUPERSAMPLE passes blended in
         uint64_t touch = 0;   // the touch it answers
         double seconds = 0;   // to render it
+        // Rendered from the values alone while the contour tree was being
+        // computed (Pipeline::preview_pass); the topology's frame follows.
+        bool preview = false;
     };
 
     ProgressiveView(Pipeline &pipeline, Options options);

@@ -262,7 +262,8 @@ std::string session_text(const Document &d, const PluginCatalog &catalog, const 
                       {"projection", v.orbit.perspective ? "perspective" : "orthographic"},
                       {"view_angle", v.orbit.view_angle},
                       {"direction", v.auto_view ? "auto" : "fixed"},
-                      {"framing", v.frame_content ? "content" : "volume"}};
+                      {"framing", v.frame_content ? "content" : "volume"},
+                      {"pan", {v.orbit.pan_right, v.orbit.pan_up}}};
     view["image"] = {{"width", v.width}, {"height", v.height}};
     view["background"] = v.background;
     view["renderer"] = plugin_json(v.renderer, catalog, folder);
@@ -424,6 +425,13 @@ SessionRead parse_session(const std::string &text, const fs::path &folder, const
             v.orbit.view_angle = r.number(c.at("view_angle"), "view.camera.view_angle");
             if (!(v.orbit.view_angle > 0 && v.orbit.view_angle < 180))
                 r.fail("view.camera.view_angle must lie in (0, 180) degrees");
+        }
+        if (c.contains("pan")) { // [right, up] in mm; older sessions have none
+            const json &p = c.at("pan");
+            if (!p.is_array() || p.size() != 2)
+                r.fail("view.camera.pan must be [right, up] in mm");
+            v.orbit.pan_right = r.number(p.at(0), "view.camera.pan[0]");
+            v.orbit.pan_up = r.number(p.at(1), "view.camera.pan[1]");
         }
     }
     if (view.contains("image")) {

@@ -1,0 +1,42 @@
+// priority_line_view.hpp - the thesis' priority-line window (Appendix A):
+// one row per simplifier, the branches of the decomposition along x in the
+// current simplifier's order (most important first), a vertical line per
+// branch as tall as its importance in that row, the kept ones coloured; the
+// threshold is a horizontal line to drag, and the cut follows live.  The
+// current simplifier's row is its own importance; the rows of the other
+// single-measure simplifiers (persistence, volume, hypervolume) are those
+// measures relative to the root, and dragging in one of them switches to
+// that simplifier.  Keep-N is the alternative: a slider below.
+#pragma once
+
+#include "pipeline/stage_results.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace arbor::workstation {
+
+class Workstation;
+
+class PriorityLineView {
+public:
+    void draw(Workstation &workstation);
+
+private:
+    struct Row {
+        std::string simplifier;     // short plugin name
+        std::vector<double> values; // per branch of the decomposition
+        bool current = false;
+        double top = 1;             // the largest value: the row's full height
+    };
+    void build_rows(Workstation &ws, const pipeline::CutResult &cut);
+
+    // The cut they were made for (a new cut: made again).
+    std::shared_ptr<const pipeline::CutResult> rows_of_;
+    std::vector<Row> rows_;
+    std::vector<uint32_t> order_; // the current simplifier's, most important first
+    std::string dragging_; // the row's simplifier while its threshold is dragged
+};
+
+} // namespace arbor::workstation

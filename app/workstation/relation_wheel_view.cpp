@@ -1,0 +1,34 @@
+#include "relation_wheel_view.hpp"
+
+#include "workstation.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+
+namespace arbor::workstation {
+
+void RelationWheelView::draw(Workstation &ws)
+{
+    const auto legend = ws.pipeline().latest<pipeline::Stage::Legend>();
+    if (ws.document().appearance.legend.empty()) {
+        ImGui::TextDisabled("no legend (choose one under Legend)");
+        return;
+    }
+    if (!legend || legend->size == 0) {
+        ImGui::TextDisabled("the legend is being drawn");
+        return;
+    }
+    if (legend.get() != shown_) {
+        const float back[3] = {0.1f, 0.1f, 0.12f};
+        const std::vector<uint8_t> rgba = to_rgba8(legend->rgba, back);
+        texture_.upload(rgba.data(), legend->size, legend->size, true);
+        shown_ = legend.get();
+    }
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    const float side = std::max(32.0f, std::min(avail.x, avail.y - 20));
+    ImGui::Text("around branch %u (%s)", legend->selected, pipeline::short_name(legend->depictor.id).c_str());
+    ImGui::Image(texture_.imgui_id(), ImVec2(side, side));
+}
+
+} // namespace arbor::workstation

@@ -1,0 +1,47 @@
+// slice_view.hpp - one of the three slice views (axial, coronal, sagittal)
+// in patient orientation (slice_geometry.hpp): the filtered volume through
+// the window, the branch labels over it, the crosshair linking the three.
+// Wheel scrolls slices, left click moves the crosshair and selects the
+// branch under it, right drag changes window/level (as in Slicer and Horos);
+// the slice's position in mm and the value under the cursor (HU on CT) are
+// written in its corner.
+#pragma once
+
+#include "gl_texture.hpp"
+#include "slice_geometry.hpp"
+#include "slice_image.hpp"
+#include "window_level.hpp"
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace arbor::workstation {
+
+class Workstation;
+
+class SliceView {
+public:
+    explicit SliceView(SliceOrientation orientation) : orientation_(orientation) {}
+    void draw(Workstation &workstation);
+    SliceOrientation orientation() const { return orientation_; }
+
+private:
+    struct Key {
+        uint64_t volume = 0, labels = 0;
+        int64_t slice = -1;
+        double width = 0, level = 0, opacity = 0;
+        bool overlay = false;
+        std::optional<uint32_t> selected;
+        std::vector<bool> hidden;
+        const void *colors = nullptr;
+        bool operator==(const Key &) const = default;
+    };
+    SliceOrientation orientation_;
+    GlTexture texture_;
+    SliceImage image_; // reused
+    Key shown_;
+};
+
+} // namespace arbor::workstation

@@ -1,0 +1,29 @@
+// volume_view.hpp - the 3D view: the progressive view's latest frame as a
+// texture, mouse as in 3D Slicer (left drag rotates, middle or Shift+left
+// drag pans, right drag or the wheel zooms, a left click picks the first
+// opaque point and moves the crosshair there), keys for the six standard
+// views (A, P, L, R, S, I; Home resets), an orientation marker and the
+// patient directions at the view's edges.  What the frame is: coarse while
+// the user drags, refined once still, named in the view's corner.
+#pragma once
+
+#include "gl_texture.hpp"
+
+#include <cstdint>
+
+namespace arbor::workstation {
+
+class Workstation;
+
+class VolumeView {
+public:
+    // Draws into the current ImGui window's remaining space.
+    void draw(Workstation &workstation);
+
+private:
+    GlTexture texture_;
+    const void *shown_ = nullptr; // the frame uploaded last
+    bool dragging_ = false;
+};
+
+} // namespace arbor::workstation

@@ -1,0 +1,167 @@
+// The panels in an ImGui context with no back end (Dear ImGui 1.86: a
+// built font atlas and io.KeyMap are all it needs), input written into
+// ImGuiIO before each NewFrame as the GLFW back end would, and assertions on
+// the workstation's state: a click on the tree selects the branch its hover
+// names, dragging the priority line sets the threshold, the branch list
+// selects and hides.
+#include "workstation/branch_list.hpp"
+#include "workstation/priority_line_view.hpp"
+#include "workstation/tree_view.hpp"
+#include "workstation/workstation.hpp"
+
+#include "plugin_fixture.hpp"
+
+#include <gtest/gtest.h>
+#include <imgui.h>
+
+#include <chrono>
+#include <functional>
+#include <thread>
+
+namespace arbor::workstation {
+namespace {
+
+using pipeline::Stage;
+
+class Gui {
+public:
+    Gui()
+    {
+        ImGui::CreateContext();
+        ImGuiIO &io = ImGui::GetIO();
+        io.IniFilename = nullptr;
+        io.DisplaySize = {800, 600};
+        io.DeltaTime = 1.0f / 60;
+        unsigned char *pixels = nullptr;
+        int w = 0, h = 0;
+        io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
+        for (int k = 0; k < ImGuiKey_COUNT; ++k)
+            io.KeyMap[k] = k;
+    }
+    ~Gui() { ImGui::DestroyContext(); }
+
+    // One frame with the mouse at `mouse` (button 0 `down`), the panel in a
+    // window filling (0, 0) .. (400, 400).
+    void frame(const std::function<void()> &panel, ImVec2 mouse, bool down)
+    {
+        ImGuiIO &io = ImGui::GetIO();
+        io.MousePos = mouse;
+        io.MouseDown[0] = down;
+        ImGui::NewFrame();
+        ImGui::SetNextWindowPos({0, 0});
+        ImGui::SetNextWindowSize({400, 400});
+        ImGui::Begin("panel", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoTitleBar);
+        panel();
+        ImGui::End();
+        ImGui::Render();
+    }
+    void click(const std::function<void()> &panel, ImVec2 at)
+    {
+        frame(panel, at, false);
+        frame(panel, at, true);
+        frame(panel, at, false);
+    }
+};
+
+void wait_idle(Workstation &ws)
+{
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (!ws.idle()) {
+        ws.poll();
+        ASSERT_LT(std::chrono::steady_clock::now(), end);
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+}
+
+std::unique_ptr<Workstation> phantom()
+{
+    auto ws = std::make_unique<Workstation>(test::built_plugins(), pipeline::PipelineOptions{});
+    ws->set_viewport(64, 64);
+    pipeline::Document d = ws->document();
+    d.input.phantom = pipeline::PhantomInput{"head", 64};
+    d.view.renderer.id = "cpu-raycast";
+    d.cut.keep = 4;
+    ws->open_document(d, "open");
+    wait_idle(*ws);
+    return ws;
+}
+
+TEST(Panels, ClickingTheTreeSelectsTheBranchItsHoverNames)
+{
+    auto ws = phantom();
+    Gui gui;
+    TreeView tree;
+    const auto draw = [&] { tree.draw(*ws); };
+    // Sweep the mouse over the tree until it hovers a non-root branch.
+    std::optional<uint32_t> hovered;
+    ImVec2 at{};
+    for (float x = 10; x < 400 && !hovered; x += 3)
+        for (float y = 10; y < 400 && !hovered; y += 6) {
+            gui.frame(draw, {x, y}, false);
+            if (ws->view().hovered && *ws->view().hovered > 0) {
+                hovered = ws->view().hovered;
+                at = {x, y};
+            }
+        }
+    ASSERT_TRUE(hovered) << "no branch line found under the mouse";
+    gui.click(draw, at);
+    EXPECT_EQ(ws->document().appearance.selected, std::optional<int32_t>(static_cast<int32_t>(*hovered)));
+    EXPECT_TRUE(ws->history().can_undo()) << "a selection is an undo step";
+}
+
+TEST(Panels, DraggingThePriorityLineSetsTheThresholdAsOneUndoStep)
+{
+    auto ws = phantom();
+    Gui gui;
+    PriorityLineView lines;
+    const auto draw = [&] { lines.draw(*ws); };
+    gui.frame(draw, {0, 0}, false);
+    const std::size_t steps = ws->history().names().size();
+    // Press low in the first row (the current simplifier's) and drag up.
+    gui.frame(draw, {200, 60}, false);
+    for (float y = 60; y >= 20; y -= 5)
+        gui.frame(draw, {200, y}, true);
+    ASSERT_TRUE(ws->document().cut.threshold) << "the drag set a threshold";
+    EXPECT_FALSE(ws->document().cut.keep);
+    gui.frame(draw, {200, 20}, false);
+    EXPECT_EQ(ws->history().names().size(), steps + 1) << "the whole drag is one step";
+    const double high = *ws->document().cut.threshold;
+    wait_idle(*ws);
+    const std::size_t kept_high = ws->pipeline().latest<Stage::Cut>()->kept();
+    // Lower: more branches kept.
+    gui.frame(draw, {200, 25}, false);
+    for (float y = 25; y <= 70; y += 5)
+        gui.frame(draw, {200, y}, true);
+    gui.frame(draw, {200, 70}, false);
+    EXPECT_LT(*ws->document().cut.threshold, high);
+    wait_idle(*ws);
+    EXPECT_GE(ws->pipeline().latest<Stage::Cut>()->kept(), kept_high);
+}
+
+TEST(Panels, TheBranchListSelectsAndHides)
+{
+    auto ws = phantom();
+    Gui gui;
+    BranchList list;
+    const auto draw = [&] { list.draw(*ws); };
+    gui.frame(draw, {0, 0}, false);
+    // Rows are one text line each below the header; find the row of branch 2
+    // by hovering down the name column.
+    std::optional<float> row_y;
+    for (float y = 5; y < 200 && !row_y; y += 2) {
+        gui.frame(draw, {150, y}, false);
+        if (ws->view().hovered == 2u)
+            row_y = y;
+    }
+    ASSERT_TRUE(row_y);
+    gui.click(draw, {150, *row_y});
+    EXPECT_EQ(ws->document().appearance.selected, std::optional<int32_t>(2));
+    // The check box in the second column hides it from the overlay.
+    ASSERT_GE(ws->view().hidden.size(), 3u);
+    EXPECT_FALSE(ws->view().hidden[2]);
+    gui.click(draw, {35, *row_y});
+    EXPECT_TRUE(ws->view().hidden[2]);
+}
+
+} // namespace
+} // namespace arbor::workstation
