@@ -4,7 +4,7 @@
 #include "commands.hpp"
 
 #include "dicom/folder_scan.hpp"
-#include "dicom/series_volume.hpp"
+#include "dicom/series_summary.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -17,30 +17,7 @@ namespace arbor::cli {
 
 namespace {
 
-struct SeriesSummary {
-    const dicom::Series *series;
-    std::optional<dicom::VolumeLayout> layout;
-    std::vector<std::string> notes;
-    std::string refusal;
-};
-
-SeriesSummary summarise(const dicom::Series &s)
-{
-    SeriesSummary out{&s, std::nullopt, {}, {}};
-    if (s.frame_count() == 0) {
-        out.refusal = "no images (" + (s.first().modality.empty() ? std::string("no modality") : s.first().modality) +
-                      " object)";
-        return out;
-    }
-    try {
-        const dicom::SeriesVolume v(s, dicom::StackPolicy{});
-        out.layout = v.layout();
-        out.notes = v.notes();
-    } catch (const std::runtime_error &e) {
-        out.refusal = e.what();
-    }
-    return out;
-}
+using dicom::SeriesSummary;
 
 std::string fixed(double v, int digits)
 {
@@ -162,7 +139,7 @@ void add_dicom_command(CLI::App &app, Context &context)
         context.progress.finish();
         std::vector<SeriesSummary> rows;
         for (const dicom::Series &s : scan.series)
-            rows.push_back(summarise(s));
+            rows.push_back(dicom::summarise_series(s));
         if (*json) {
             nlohmann::json j = {{"folder", scan.root.string()}, {"series", nlohmann::json::array()}};
             for (std::size_t i = 0; i < rows.size(); ++i)

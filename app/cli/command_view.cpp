@@ -78,7 +78,8 @@ void add_view_command(CLI::App &app, Context &context)
         ->excludes(sub->get_option("input"));
     sub->add_option("--script", args->script,
                     "Run these steps (one per line: open, wait idle, set, select, drag-threshold, orbit, view, "
-                    "window-level, window-preset, pick, undo, redo, screenshot, screenshot-window, save-session, "
+                    "window-level, window-preset, pick, hide, show, branch-opacity, reset-styles, undo, redo, screenshot, "
+                    "screenshot-window, save-session, "
                     "export-labels, export-tf, quit)")
         ->check(CLI::ExistingFile);
     sub->add_option("--frame-log", args->frame_log, "Write one line per UI frame: time, frame ms, running jobs");

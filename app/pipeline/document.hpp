@@ -99,6 +99,18 @@ struct Appearance {
     bool operator==(const Appearance &) const = default;
 };
 
+// A person's edit of one structure's look in the 3D view: shown or not,
+// its opacity (a multiplier of its optical depth: 2 is as if twice as
+// dense) and its colour.  Applied on top of the transfer functions (and
+// their balance) when rendering, so they survive a new flow rate, shape
+// or cut until reset.
+struct BranchStyle {
+    bool visible = true;
+    double opacity = 1.0;                        // >= 0
+    std::optional<std::array<double, 3>> color;  // sRGB in [0, 1]; none: the generator's
+    bool operator==(const BranchStyle &) const = default;
+};
+
 struct ViewChoice {
     Orbit orbit;
     // Frame what is visible (framing.hpp) rather than the grid's box; the
@@ -110,6 +122,9 @@ struct ViewChoice {
     uint32_t width = 512, height = 512;
     std::array<double, 4> background{0.0, 0.0, 0.0, 1.0};
     PluginSetting renderer;
+    // By the branch's extremum vertex (what identifies a branch across
+    // cuts and simplifiers, arbor_branch_tree.extremum_vertex).
+    std::map<int64_t, BranchStyle> branch_styles;
     bool operator==(const ViewChoice &) const = default;
 };
 

@@ -1,5 +1,6 @@
 #include "pipeline.hpp"
 
+#include "branch_style.hpp"
 #include "preview_functions.hpp"
 #include "render_scene.hpp"
 #include "stage_compute.hpp"
@@ -305,6 +306,8 @@ void Pipeline::render_pass(RenderedImage &frame, const FramePass &pass, std::sto
         functions = last->functions;
     else if (last && last->balance && last->balance->scale.size() == functions->branch_count())
         functions = functions->with_optical_depth(last->balance->scale);
+    if (!current)
+        functions = styled(functions, tf->depiction->cut->tree->record(), d.view.branch_styles);
     const arbor_camera camera = camera_for(d, *filtered);
     RenderScene scene(*filtered, *labels, functions->branch_count(), d.view.background);
     scene.request.transfer_functions = &functions->record();

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <charconv>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -267,6 +268,16 @@ std::string session_text(const Document &d, const PluginCatalog &catalog, const 
     view["image"] = {{"width", v.width}, {"height", v.height}};
     view["background"] = v.background;
     view["renderer"] = plugin_json(v.renderer, catalog, folder);
+    if (!v.branch_styles.empty()) {
+        ordered styles = ordered::array();
+        for (const auto &[vertex, style] : v.branch_styles) {
+            ordered e = {{"extremum_vertex", vertex}, {"visible", style.visible}, {"opacity", style.opacity}};
+            if (style.color)
+                e["color"] = *style.color;
+            styles.push_back(e);
+        }
+        view["branch_styles"] = styles;
+    }
     j["view"] = view;
     try {
         return j.dump(2) + "\n";
@@ -444,6 +455,41 @@ SessionRead parse_session(const std::string &text, const fs::path &folder, const
         };
         v.width = side("width");
         v.height = side("height");
+    }
+    if (view.contains("branch_styles")) {
+        const json &styles = view.at("branch_styles");
+        if (!styles.is_array())
+            r.fail("view.branch_styles must be a list");
+        for (const json &e : styles) {
+            const std::string where = "view.branch_styles[" + std::to_string(v.branch_styles.size()) + "]";
+            const double vertex = r.number(r.member(e, "extremum_vertex", where), where + ".extremum_vertex");
+            if (!(vertex >= 0 && vertex < 9.0e15) || vertex != std::floor(vertex))
+                r.fail(where + ".extremum_vertex must be a voxel index");
+            BranchStyle style;
+            if (e.contains("visible")) {
+                if (!e.at("visible").is_boolean())
+                    r.fail(where + ".visible must be true or false");
+                style.visible = e.at("visible").get<bool>();
+            }
+            if (e.contains("opacity")) {
+                style.opacity = r.number(e.at("opacity"), where + ".opacity");
+                if (!(style.opacity >= 0 && style.opacity <= 100))
+                    r.fail(where + ".opacity must lie in [0, 100]");
+            }
+            if (e.contains("color")) {
+                const json &c = e.at("color");
+                if (!c.is_array() || c.size() != 3)
+                    r.fail(where + ".color must be [r, g, b] in [0, 1]");
+                std::array<double, 3> rgb{};
+                for (std::size_t k = 0; k < 3; ++k) {
+                    rgb[k] = r.number(c.at(k), where + ".color");
+                    if (!(rgb[k] >= 0 && rgb[k] <= 1))
+                        r.fail(where + ".color must be [r, g, b] in [0, 1]");
+                }
+                style.color = rgb;
+            }
+            v.branch_styles[static_cast<int64_t>(vertex)] = style;
+        }
     }
     if (view.contains("background")) {
         const json &bg = view.at("background");

@@ -1,5 +1,7 @@
 #include "stage_compute.hpp"
 
+#include "branch_style.hpp"
+
 #include "render_scene.hpp"
 #include "transfer_function_file.hpp"
 #include "tree_cache.hpp"
@@ -436,6 +438,8 @@ std::shared_ptr<const void> render(StageContext &c)
         r->balance = memo->balance;
         r->functions = tf->functions->with_optical_depth(memo->balance.scale);
     }
+    // A person's edits of single structures, on top (framing sees them too).
+    r->functions = styled(r->functions, tf->depiction->cut->tree->record(), v.branch_styles);
     request.transfer_functions = &r->functions->record();
 
     Orbit orbit = v.orbit;

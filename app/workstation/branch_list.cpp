@@ -23,7 +23,6 @@ void BranchList::draw(Workstation &ws)
     const std::vector<double> shares = ws.visibility_shares();
     const auto selected = ws.document().appearance.selected;
     ViewState &v = ws.view();
-    v.hidden.resize(t.branch_count, false);
     const ValueMapping &mapping = filtered->volume->mapping();
     const int volume_column = [&] {
         for (uint32_t m = 0; m < t.measure_count; ++m)
@@ -31,13 +30,23 @@ void BranchList::draw(Workstation &ws)
                 return static_cast<int>(m);
         return -1;
     }();
+    const bool edited = !ws.document().view.branch_styles.empty();
+    if (!edited)
+        ImGui::BeginDisabled();
+    if (ImGui::SmallButton("Reset edits"))
+        ws.reset_branch_styles();
+    if (!edited)
+        ImGui::EndDisabled();
+    ImGui::SameLine();
+    ImGui::TextDisabled("colour, show and opacity edits follow a structure until reset");
     const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV;
-    if (!ImGui::BeginTable("branches", 6, flags))
+    if (!ImGui::BeginTable("branches", 7, flags))
         return;
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, 18);
     ImGui::TableSetupColumn("show", ImGuiTableColumnFlags_WidthFixed, 34);
     ImGui::TableSetupColumn("branch");
+    ImGui::TableSetupColumn("opacity", ImGuiTableColumnFlags_WidthFixed, 54);
     ImGui::TableSetupColumn("visible");
     ImGui::TableSetupColumn(mapping.unit.empty() ? "values" : mapping.unit.c_str());
     ImGui::TableSetupColumn("voxels");
@@ -45,13 +54,24 @@ void BranchList::draw(Workstation &ws)
     for (uint32_t b = 0; b < t.branch_count; ++b) {
         ImGui::TableNextRow();
         ImGui::PushID(static_cast<int>(b));
+        pipeline::BranchStyle style = ws.branch_style(b);
+        bool restyled = false, live = false;
         ImGui::TableNextColumn();
-        const ImVec4 c = b < colors.size() ? ImVec4(colors[b][0], colors[b][1], colors[b][2], 1) : ImVec4(0.5f, 0.5f, 0.5f, 1);
-        ImGui::ColorButton("##swatch", c, ImGuiColorEditFlags_NoTooltip, ImVec2(14, 14));
+        float c[3] = {0.5f, 0.5f, 0.5f};
+        if (style.color)
+            for (int k = 0; k < 3; ++k)
+                c[k] = static_cast<float>((*style.color)[k]);
+        else if (b < colors.size())
+            for (int k = 0; k < 3; ++k)
+                c[k] = colors[b][k];
+        if (ImGui::ColorEdit3("##colour", c, ImGuiColorEditFlags_NoInputs | ImGuiColorEditFlags_NoLabel)) {
+            style.color = std::array<double, 3>{c[0], c[1], c[2]};
+            restyled = true;
+            live = true; // the picker is being dragged
+        }
         ImGui::TableNextColumn();
-        bool shown = !v.hidden[b];
-        if (ImGui::Checkbox("##show", &shown))
-            v.hidden[b] = !shown;
+        if (ImGui::Checkbox("##show", &style.visible))
+            restyled = true;
         ImGui::TableNextColumn();
         char name[64];
         std::snprintf(name, sizeof name, "%u %s", b,
@@ -66,6 +86,25 @@ void BranchList::draw(Workstation &ws)
         }
         if (ImGui::IsItemHovered())
             v.hovered = b;
+        ImGui::TableNextColumn();
+        float opacity = static_cast<float>(style.opacity);
+        ImGui::SetNextItemWidth(-1);
+        if (ImGui::DragFloat("##opacity", &opacity, 0.02f, 0.0f, 10.0f, "x%.2f", ImGuiSliderFlags_AlwaysClamp)) {
+            style.opacity = opacity;
+            restyled = true;
+            live = true;
+        }
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("opacity: a multiple of the structure's optical depth (x2: as if twice as dense)");
+        if (ImGui::IsItemDeactivatedAfterEdit())
+            ws.commit("opacity of branch " + std::to_string(b));
+        if (restyled) {
+            try {
+                ws.set_branch_style(b, style, !live);
+            } catch (const std::exception &e) {
+                ws.say(ARBOR_LOG_ERROR, e.what());
+            }
+        }
         ImGui::TableNextColumn();
         if (b < shares.size())
             ImGui::Text("%.1f %%", 100 * shares[b]);

@@ -62,7 +62,7 @@ void PriorityLineView::draw(Workstation &ws)
 {
     const auto cut = ws.pipeline().latest<Stage::Cut>();
     if (!cut) {
-        ImGui::TextDisabled("the contour tree is being computed");
+        ImGui::TextDisabled(ws.has_input() ? "the contour tree is being computed" : "no volume");
         return;
     }
     if (cut != rows_of_) {

@@ -16,7 +16,7 @@ void RelationWheelView::draw(Workstation &ws)
         return;
     }
     if (!legend || legend->size == 0) {
-        ImGui::TextDisabled("the legend is being drawn");
+        ImGui::TextDisabled(ws.has_input() ? "the legend is being drawn" : "no volume");
         return;
     }
     if (legend.get() != shown_) {

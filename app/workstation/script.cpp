@@ -17,7 +17,8 @@ const std::map<std::string, std::pair<std::size_t, std::size_t>> &commands()
         {"open", {1, 1}},          {"wait", {1, 2}},        {"set", {2, 2}},
         {"select", {1, 1}},        {"drag-threshold", {1, 1}}, {"orbit", {2, 2}},
         {"view", {1, 1}},          {"window-level", {2, 2}}, {"window-preset", {1, 1}},
-        {"pick", {2, 2}},          {"undo", {0, 0}},        {"redo", {0, 0}},
+        {"pick", {2, 2}},          {"hide", {1, 1}},        {"show", {1, 1}},
+        {"branch-opacity", {2, 2}}, {"reset-styles", {0, 0}},          {"undo", {0, 0}},        {"redo", {0, 0}},
         {"screenshot", {1, 1}},    {"screenshot-window", {1, 1}}, {"save-session", {1, 1}},
         {"export-labels", {1, 1}}, {"export-tf", {1, 1}},   {"quit", {0, 0}},
     };
@@ -118,7 +119,7 @@ bool ScriptRunner::step(Workstation &ws, ScriptWindow &window)
             const auto now = std::chrono::steady_clock::now();
             if (!waiting_since_)
                 waiting_since_ = now;
-            if (!ws.idle()) {
+            if (!ws.idle() || window.busy()) {
                 if (std::chrono::duration<double>(now - *waiting_since_).count() > limit)
                     throw std::runtime_error("still busy after " + std::to_string(static_cast<int>(limit)) + " s");
                 return true;
@@ -159,6 +160,18 @@ void ScriptRunner::run(const ScriptLine &line, Workstation &ws, ScriptWindow &wi
     else if (c == "pick") {
         if (!ws.pick(number(a[0], "x"), number(a[1], "y")))
             throw std::runtime_error("nothing opaque under (" + a[0] + ", " + a[1] + ")");
+    } else if (c == "hide" || c == "show" || c == "branch-opacity") {
+        const double label = number(a[0], c);
+        if (label < 0 || label != std::floor(label))
+            throw std::invalid_argument("'" + a[0] + "' is not a branch label");
+        pipeline::BranchStyle style = ws.branch_style(static_cast<uint32_t>(label));
+        if (c == "branch-opacity")
+            style.opacity = number(a[1], "opacity");
+        else
+            style.visible = c == "show";
+        ws.set_branch_style(static_cast<uint32_t>(label), style);
+    } else if (c == "reset-styles") {
+        ws.reset_branch_styles();
     } else if (c == "undo") {
         if (!ws.undo())
             throw std::runtime_error("nothing to undo");

@@ -12,6 +12,9 @@
 //   window-level W L           the slice views' window
 //   window-preset NAME         brain, bone, lung, soft-tissue, abdomen, auto
 //   pick X Y                   click the 3D view at frame pixel (X, Y)
+//   hide LABEL | show LABEL    a kept branch in the 3D view and the slices
+//   branch-opacity LABEL X     its optical depth times X
+//   reset-styles               every branch as the transfer functions have it
 //   undo | redo
 //   screenshot PATH            the 3D view (PNG or EXR)
 //   screenshot-window PATH     the whole window (PNG)
@@ -56,6 +59,8 @@ public:
     // Write the whole window (as drawn this frame) to a PNG.
     virtual void capture_window(const std::filesystem::path &path) = 0;
     virtual void quit() = 0;
+    // Work of the window's own that `wait idle` waits for (a DICOM folder scan).
+    virtual bool busy() const { return false; }
 };
 
 class ScriptRunner {

@@ -42,7 +42,7 @@ void SliceView::draw(Workstation &ws)
     const auto selected = ws.document().appearance.selected;
     Key key{filtered->revision, labelled ? labels->revision : 0, slice, v.window.width, v.window.level,
             v.overlay_opacity, labelled, selected ? std::optional<uint32_t>(static_cast<uint32_t>(*selected)) : std::nullopt,
-            v.hidden, labelled ? static_cast<const void *>(tf->functions.get()) : nullptr};
+            ws.hidden_labels(), labelled ? static_cast<const void *>(tf->functions.get()) : nullptr};
     if (!(key == shown_) || texture_.empty()) {
         LabelOverlay overlay;
         if (labelled) {
@@ -50,7 +50,7 @@ void SliceView::draw(Workstation &ws)
             overlay.colors = &colors;
             overlay.opacity = v.overlay_opacity;
             overlay.selected = key.selected;
-            overlay.hidden = &v.hidden;
+            overlay.hidden = &key.hidden;
         }
         slice_image(volume, s, slice, v.window, overlay, image_);
         texture_.upload(image_.rgba.data(), image_.width, image_.height, false);

@@ -28,7 +28,7 @@ void TreeView::draw(Workstation &ws)
 {
     const auto cut = ws.pipeline().latest<Stage::Cut>();
     if (!cut) {
-        ImGui::TextDisabled("the contour tree is being computed");
+        ImGui::TextDisabled(ws.has_input() ? "the contour tree is being computed" : "no volume");
         return;
     }
     const arbor_branch_tree &t = cut->tree->record();

@@ -182,6 +182,61 @@ void Workstation::select(std::optional<int32_t> label)
     change(d, label ? "select " + std::to_string(*label) : std::string("select none"));
 }
 
+namespace {
+
+int64_t extremum_of(const pipeline::Pipeline &p, uint32_t label)
+{
+    const auto cut = p.latest<Stage::Cut>();
+    if (!cut || label >= cut->kept())
+        throw std::invalid_argument("branch " + std::to_string(label) + ": the simplified tree has " +
+                                    std::to_string(cut ? cut->kept() : 0) + " branches");
+    return cut->tree->record().extremum_vertex[label];
+}
+
+} // namespace
+
+pipeline::BranchStyle Workstation::branch_style(uint32_t label) const
+{
+    const auto &styles = history_.current().view.branch_styles;
+    const auto s = styles.find(extremum_of(pipeline_, label));
+    return s == styles.end() ? pipeline::BranchStyle{} : s->second;
+}
+
+void Workstation::set_branch_style(uint32_t label, const pipeline::BranchStyle &style, bool commit)
+{
+    if (!(style.opacity >= 0 && style.opacity <= 100))
+        throw std::invalid_argument("branch opacity must lie in [0, 100]");
+    Document d = history_.current();
+    const int64_t vertex = extremum_of(pipeline_, label);
+    if (style == pipeline::BranchStyle{})
+        d.view.branch_styles.erase(vertex);
+    else
+        d.view.branch_styles[vertex] = style;
+    change(d, "style of branch " + std::to_string(label), commit);
+}
+
+void Workstation::reset_branch_styles()
+{
+    Document d = history_.current();
+    d.view.branch_styles.clear();
+    change(d, "reset the branch styles");
+}
+
+std::vector<bool> Workstation::hidden_labels() const
+{
+    std::vector<bool> out;
+    const auto cut = pipeline_.latest<Stage::Cut>();
+    const auto &styles = history_.current().view.branch_styles;
+    if (!cut || styles.empty())
+        return out;
+    const arbor_branch_tree &t = cut->tree->record();
+    out.resize(t.branch_count, false);
+    for (uint32_t b = 0; b < t.branch_count; ++b)
+        if (const auto s = styles.find(t.extremum_vertex[b]); s != styles.end())
+            out[b] = !s->second.visible;
+    return out;
+}
+
 void Workstation::drag_threshold(double fraction, bool commit)
 {
     fraction = std::clamp(fraction, 0.0, 1.0);

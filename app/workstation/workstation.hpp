@@ -35,7 +35,6 @@ struct ViewState {
     double overlay_opacity = 0.35;
     bool overlay = true;
     std::optional<uint32_t> hovered; // the branch under the mouse in any view
-    std::vector<bool> hidden;        // per label: left out of the slice overlay
     bool help = false;               // the help overlay is shown
 };
 
@@ -83,6 +82,16 @@ public:
     // kept branches are those whose importance exceeds fraction x the most
     // important non-root branch's.
     void drag_threshold(double fraction, bool commit = true);
+    // A person's edit of one kept branch's look (pipeline BranchStyle): it
+    // follows the structure through new cuts until reset.  Throws
+    // std::invalid_argument for a label the simplified tree does not have.
+    pipeline::BranchStyle branch_style(uint32_t label) const;
+    void set_branch_style(uint32_t label, const pipeline::BranchStyle &style, bool commit = true);
+    void reset_branch_styles();
+    // Per label of the current cut: hidden by its style (the slice overlay
+    // leaves it out too).
+    std::vector<bool> hidden_labels() const;
+
     // Absolute orbit angles (degrees); `rotate` adds to them.
     void orbit(double azimuth, double elevation, bool commit = true);
     void rotate(double d_azimuth, double d_elevation, bool commit = false);

@@ -1,6 +1,7 @@
 #include "workstation_window.hpp"
 
 #include "branch_list.hpp"
+#include "dicom_browser.hpp"
 #include "frame_log.hpp"
 #include "job_panel.hpp"
 #include "parameter_panel.hpp"
@@ -76,6 +77,7 @@ public:
 
     void capture_window(const fs::path &path) override { capture_ = path; }
     void quit() override { quit_ = true; }
+    bool busy() const override { return dicom_.scanning(); }
 
 private:
     void frame();
@@ -110,6 +112,7 @@ private:
     ParameterPanel parameters_;
     JobPanel jobs_;
     RelationWheelView wheel_;
+    DicomBrowser dicom_;
 
     char path_entry_[1024] = "";
     bool open_dialog_ = false, save_dialog_ = false, restore_offer_ = false;
@@ -153,6 +156,13 @@ void Window::finish_captures(bool wait)
 
 void Window::open(const fs::path &path)
 {
+    // A folder goes through the DICOM browser (one readable series opens at once).
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) {
+        dicom_.scan(path, true);
+        add_recent_file(path);
+        return;
+    }
     try {
         ws_.open(path);
         add_recent_file(path);
@@ -186,6 +196,8 @@ void Window::menu()
     if (ImGui::BeginMenu("File")) {
         if (ImGui::MenuItem("Open...", "Ctrl+O"))
             open_dialog_ = true;
+        if (ImGui::MenuItem("DICOM browser...", nullptr, dicom_.shown()))
+            dicom_.shown() = !dicom_.shown();
         if (ImGui::BeginMenu("Open recent")) {
             for (const fs::path &p : recent_files())
                 if (ImGui::MenuItem(p.string().c_str()))
@@ -445,6 +457,7 @@ void Window::frame()
     menu();
     layout();
     dialogs();
+    dicom_.draw(ws_);
     help();
     ImGui::Render();
     int fw = 0, fh = 0;

@@ -3,7 +3,7 @@
 // ImGuiIO before each NewFrame as the GLFW back end would, and assertions on
 // the workstation's state: a click on the tree selects the branch its hover
 // names, dragging the priority line sets the threshold, the branch list
-// selects and hides.
+// selects and hides, and a hidden branch is gone from the 3D view.
 #include "workstation/branch_list.hpp"
 #include "workstation/priority_line_view.hpp"
 #include "workstation/tree_view.hpp"
@@ -156,11 +156,14 @@ TEST(Panels, TheBranchListSelectsAndHides)
     ASSERT_TRUE(row_y);
     gui.click(draw, {150, *row_y});
     EXPECT_EQ(ws->document().appearance.selected, std::optional<int32_t>(2));
-    // The check box in the second column hides it from the overlay.
-    ASSERT_GE(ws->view().hidden.size(), 3u);
-    EXPECT_FALSE(ws->view().hidden[2]);
+    // The check box in the second column hides it: a style the 3D view and
+    // the slice overlay follow.
+    EXPECT_TRUE(ws->hidden_labels().empty());
     gui.click(draw, {35, *row_y});
-    EXPECT_TRUE(ws->view().hidden[2]);
+    ASSERT_GE(ws->hidden_labels().size(), 3u);
+    EXPECT_TRUE(ws->hidden_labels()[2]);
+    EXPECT_FALSE(ws->branch_style(2).visible);
+    EXPECT_EQ(ws->document().view.branch_styles.size(), 1u);
 }
 
 } // namespace

@@ -110,6 +110,48 @@ TEST(Workstation, SelectionThresholdAndCrosshair)
     EXPECT_EQ(ws->view().crosshair, (std::array<int64_t, 3>{0, dims[1] - 1, 3}));
 }
 
+TEST(Workstation, AHiddenBranchIsGoneFromThePictureThroughNewTransferFunctionsUntilReset)
+{
+    auto ws = phantom_workstation();
+    ws->set("keep", "4");
+    wait_idle(*ws);
+    const auto share = [&](uint32_t label) {
+        const auto &v = ws->pipeline().latest<Stage::Render>()->image.label_visibility;
+        double total = 0;
+        for (double x : v)
+            total += x;
+        return v.at(label) / total;
+    };
+    // The branch with the largest share but the root's.
+    uint32_t shown = 1;
+    for (uint32_t b = 2; b < 4; ++b)
+        if (share(b) > share(shown))
+            shown = b;
+    ASSERT_GT(share(shown), 0.01);
+    pipeline::BranchStyle hidden;
+    hidden.visible = false;
+    ws->set_branch_style(shown, hidden);
+    wait_idle(*ws);
+    EXPECT_EQ(share(shown), 0.0) << "a hidden branch contributes nothing";
+    // A new flow rate regenerates the transfer functions: still hidden.
+    ws->set("flow-rate", "120");
+    wait_idle(*ws);
+    EXPECT_EQ(share(shown), 0.0);
+    EXPECT_FALSE(ws->branch_style(shown).visible);
+    // Twice the optical depth of another branch raises its share.
+    const uint32_t other = shown == 1 ? 2 : 1;
+    const double before = share(other);
+    pipeline::BranchStyle denser;
+    denser.opacity = 3;
+    ws->set_branch_style(other, denser);
+    wait_idle(*ws);
+    EXPECT_GT(share(other), before);
+    ws->reset_branch_styles();
+    wait_idle(*ws);
+    EXPECT_GT(share(shown), 0.01);
+    EXPECT_THROW(ws->set_branch_style(99, hidden), std::invalid_argument);
+}
+
 TEST(Workstation, PickingTheCentreOfTheViewHitsTheHeadsSurfaceInFront)
 {
     auto ws = phantom_workstation();
@@ -132,6 +174,11 @@ TEST(Workstation, SessionsRoundTripToTheSameDocument)
     ws->set("keep", "4");
     ws->orbit(40, 15);
     wait_idle(*ws);
+    pipeline::BranchStyle style;
+    style.opacity = 0.5;
+    style.color = std::array<double, 3>{0.2, 0.4, 0.9};
+    ws->set_branch_style(2, style);
+    wait_idle(*ws);
     const std::filesystem::path path = test::scratch_dir() / "workstation-session.json";
     ws->save_session(path);
     auto again = std::make_unique<Workstation>(test::built_plugins(), pipeline::PipelineOptions{});
@@ -139,6 +186,7 @@ TEST(Workstation, SessionsRoundTripToTheSameDocument)
     again->open(path);
     wait_idle(*again);
     EXPECT_EQ(again->pipeline().document(), ws->pipeline().document());
+    EXPECT_EQ(again->branch_style(2), style) << "branch styles are part of the session";
     EXPECT_EQ(again->pipeline().latest<Stage::Render>()->image.rgba, ws->pipeline().latest<Stage::Render>()->image.rgba);
     EXPECT_THROW(again->open(test::scratch_dir() / "no-such-file.nrrd"), std::invalid_argument);
 }

@@ -1,0 +1,181 @@
+#include "dicom_browser.hpp"
+
+#include "workstation.hpp"
+
+#include <imgui.h>
+
+#include <cstdio>
+
+namespace arbor::workstation {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ScanCancelled {};
+
+std::string date_text(const std::string &d)
+{
+    return d.size() == 8 ? d.substr(0, 4) + "-" + d.substr(4, 2) + "-" + d.substr(6, 2) : d;
+}
+
+} // namespace
+
+DicomBrowser::~DicomBrowser() { cancel(); }
+
+void DicomBrowser::cancel()
+{
+    if (cancelled_)
+        cancelled_->store(true);
+    if (pending_.valid())
+        pending_.wait();
+    pending_ = {};
+}
+
+void DicomBrowser::scan(const fs::path &folder, bool open_single)
+{
+    cancel();
+    std::snprintf(path_, sizeof path_, "%s", folder.c_str());
+    shown_ = true;
+    open_single_ = open_single;
+    result_.reset();
+    error_.clear();
+    progress_ = std::make_shared<std::atomic<double>>(0.0);
+    cancelled_ = std::make_shared<std::atomic<bool>>(false);
+    pending_ = std::async(std::launch::async, [folder, progress = progress_, cancelled = cancelled_] {
+        auto s = std::make_shared<Scan>();
+        s->folder = dicom::scan_dicom(folder, [&](double f) {
+            if (cancelled->load())
+                throw ScanCancelled{};
+            progress->store(0.8 * f);
+        });
+        for (std::size_t i = 0; i < s->folder.series.size(); ++i) {
+            if (cancelled->load())
+                throw ScanCancelled{};
+            s->series.push_back(dicom::summarise_series(s->folder.series[i]));
+            progress->store(0.8 + 0.2 * static_cast<double>(i + 1) / static_cast<double>(s->folder.series.size()));
+        }
+        return s;
+    });
+}
+
+void DicomBrowser::draw(Workstation &ws)
+{
+    if (!shown_)
+        return;
+    if (pending_.valid() && pending_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        try {
+            result_ = pending_.get();
+        } catch (const ScanCancelled &) {
+            error_ = "scan cancelled";
+        } catch (const std::exception &e) {
+            error_ = e.what();
+        }
+        pending_ = {};
+        if (result_ && open_single_) {
+            const dicom::SeriesSummary *only = nullptr;
+            int readable = 0;
+            for (const auto &s : result_->series)
+                if (s.layout) {
+                    only = &s;
+                    ++readable;
+                }
+            if (readable == 1) {
+                try {
+                    pipeline::Document d = ws.document();
+                    d.input = {};
+                    d.input.path = path_;
+                    d.input.importer.params["series"] = only->series->uid;
+                    ws.open_document(d, "open " + fs::path(path_).filename().string());
+                    shown_ = false;
+                } catch (const std::exception &e) {
+                    error_ = e.what();
+                }
+            }
+        }
+    }
+    ImGui::SetNextWindowSize({980, 420}, ImGuiCond_FirstUseEver);
+    if (!ImGui::Begin("DICOM browser", &shown_)) {
+        ImGui::End();
+        return;
+    }
+    ImGui::SetNextItemWidth(600);
+    const bool enter = ImGui::InputText("folder", path_, sizeof path_, ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::SameLine();
+    if (ImGui::Button("Scan") || enter)
+        scan(path_, false);
+    if (pending_.valid()) {
+        ImGui::ProgressBar(static_cast<float>(progress_->load()), ImVec2(-80, 0), "scanning the folder");
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel"))
+            cancelled_->store(true);
+    }
+    if (!error_.empty())
+        ImGui::TextColored({1, 0.45f, 0.4f, 1}, "%s", error_.c_str());
+    if (result_) {
+        const auto &f = result_->folder;
+        ImGui::Text("%zu series; %zu files unreadable, %zu not DICOM", result_->series.size(), f.unreadable.size(),
+                    f.not_dicom.size());
+        const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_Resizable |
+                                      ImGuiTableFlags_BordersInnerV;
+        if (ImGui::BeginTable("series", 8, flags)) {
+            ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, 40);
+            for (const char *h : {"patient", "study", "series", "modality", "description"})
+                ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthStretch, 1.0f);
+            ImGui::TableSetupColumn("volume", ImGuiTableColumnFlags_WidthFixed, 210);
+            ImGui::TableSetupColumn("reading", ImGuiTableColumnFlags_WidthStretch, 3.0f);
+            ImGui::TableSetupScrollFreeze(0, 1);
+            ImGui::TableHeadersRow();
+            for (std::size_t i = 0; i < result_->series.size(); ++i) {
+                const dicom::SeriesSummary &s = result_->series[i];
+                const dicom::ImageRecord &r = s.series->first();
+                ImGui::TableNextRow();
+                ImGui::PushID(static_cast<int>(i));
+                ImGui::TableNextColumn();
+                if (!s.layout)
+                    ImGui::BeginDisabled();
+                if (ImGui::SmallButton("Open")) {
+                    try {
+                        pipeline::Document d = ws.document();
+                        d.input = {};
+                        d.input.path = path_;
+                        d.input.importer.params["series"] = s.series->uid;
+                        ws.open_document(d, "open series " + r.series_number + " of " + fs::path(path_).filename().string());
+                        shown_ = false;
+                    } catch (const std::exception &e) {
+                        error_ = e.what();
+                    }
+                }
+                if (!s.layout)
+                    ImGui::EndDisabled();
+                ImGui::TableNextColumn();
+                ImGui::Text("%s %s", r.patient_name.c_str(), r.patient_id.c_str());
+                ImGui::TableNextColumn();
+                ImGui::Text("%s %s", date_text(r.study_date).c_str(), r.study_description.c_str());
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(r.series_number.c_str());
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(r.modality.c_str());
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(r.series_description.c_str());
+                ImGui::TableNextColumn();
+                if (s.layout)
+                    ImGui::Text("%lldx%lldx%lld, %.2fx%.2fx%.2f mm", static_cast<long long>(s.layout->dims[0]),
+                                static_cast<long long>(s.layout->dims[1]), static_cast<long long>(s.layout->dims[2]),
+                                s.layout->spacing[0], s.layout->spacing[1], s.layout->spacing[2]);
+                ImGui::TableNextColumn();
+                if (!s.refusal.empty())
+                    ImGui::TextColored({1, 0.6f, 0.4f, 1}, "cannot: %s", s.refusal.c_str());
+                else if (s.notes.empty())
+                    ImGui::TextDisabled("as stored");
+                for (const std::string &n : s.notes)
+                    ImGui::TextWrapped("%s", n.c_str());
+                ImGui::PopID();
+            }
+            ImGui::EndTable();
+        }
+    }
+    ImGui::End();
+}
+
+} // namespace arbor::workstation

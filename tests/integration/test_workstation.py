@@ -1,0 +1,135 @@
+"""`arbor view`: the real window (GLFW, Dear ImGui, OpenGL 3.3 under Xvfb)
+driven by --script as a person would drive it, on a real CT: open, wait,
+move the flow rate, select a branch, drag the threshold, hide a branch,
+save the session and screenshots; the screenshots change as they should,
+the session reopens to the same picture (in the workstation and in
+`arbor run --session`), and no frame took over 100 ms while the contour
+tree was computed.  Run by ctest like test_cli.py.
+"""
+import os
+import shutil
+import subprocess
+import unittest
+
+import numpy
+from PIL import Image
+
+from test_cli import ARBOR, DATA, SCRATCH, arbor
+
+CT = DATA / "dicom_ct_head_0051"
+
+
+def view(*args, script=None, check=True):
+    """Runs `arbor view` in its own 24-bit X server; (status, stdout, stderr)."""
+    cmd = ["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", ARBOR, "view", *map(str, args)]
+    if script is not None:
+        path = SCRATCH / f"steps-{abs(hash(script))}.txt"
+        path.write_text(script)
+        cmd += ["--script", str(path)]
+    env = dict(os.environ, HOME=str(SCRATCH / "home"), ARBOR_STATE_DIR=str(SCRATCH / "state"))
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=900)
+    if check and p.returncode != 0:
+        raise AssertionError(f"arbor view failed ({p.returncode}):\n{p.stderr}")
+    return p.returncode, p.stdout, p.stderr
+
+
+def pixels(path):
+    return numpy.asarray(Image.open(path).convert("RGB")).astype(int)
+
+
+def differs(a, b):
+    """Mean absolute difference of two pictures, 0..255."""
+    return float(numpy.abs(pixels(a) - pixels(b)).mean())
+
+
+@unittest.skipUnless(shutil.which("xvfb-run"), "needs xvfb-run")
+class Workstation(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.out = SCRATCH / "workstation"
+        cls.out.mkdir(parents=True, exist_ok=True)
+        o = cls.out
+        cls.frame_log = o / "frames.txt"
+        cls.status, cls.stdout, cls.stderr = view(
+            "--no-cache", "--frame-log", cls.frame_log, script=f"""\
+# as a radiologist would: open the CT, let it compute, then change things
+open {CT}
+wait idle 600
+screenshot {o}/opened.png
+set flow-rate 150
+wait idle
+screenshot {o}/flow.png
+select 2
+wait idle
+screenshot {o}/selected.png
+drag-threshold 0.02
+wait idle
+screenshot {o}/threshold.png
+hide 1
+wait idle
+screenshot {o}/hidden.png
+undo
+wait idle
+screenshot {o}/undone.png
+save-session {o}/session.json
+screenshot-window {o}/window.png
+export-labels {o}/labels.nrrd
+quit
+""")
+
+    def test_the_script_ran_to_its_end(self):
+        self.assertEqual(self.status, 0, self.stderr)
+        for name in ("opened", "flow", "selected", "threshold", "hidden", "undone", "window"):
+            self.assertTrue((self.out / f"{name}.png").exists(), name)
+        self.assertTrue((self.out / "labels.nrrd").exists())
+
+    def test_each_change_changes_the_picture_and_undo_restores_it(self):
+        o = self.out
+        self.assertGreater(differs(o / "opened.png", o / "flow.png"), 0.2, "a new flow rate")
+        self.assertGreater(differs(o / "flow.png", o / "selected.png"), 0.2, "a selection recolours by relation")
+        self.assertGreater(differs(o / "selected.png", o / "threshold.png"), 0.2, "another cut")
+        self.assertGreater(differs(o / "threshold.png", o / "hidden.png"), 0.2, "a hidden branch")
+        self.assertEqual(differs(o / "threshold.png", o / "undone.png"), 0.0, "undo gives the same picture back")
+
+    def test_the_window_shows_every_view(self):
+        w = pixels(self.out / "window.png")
+        self.assertEqual(w.shape, (1000, 1600, 3))
+        # The 3D view (centre top) and the three slice views (centre bottom)
+        # hold pictures, not the empty window colour.
+        centre_top = w[60:600, 400:1200]
+        slices = w[700:950, 360:1200]
+        self.assertGreater(centre_top.std(), 10)
+        self.assertGreater(slices.std(), 10)
+
+    def test_the_session_reopens_to_the_same_picture(self):
+        o = self.out
+        view("--no-cache", o / "session.json", script=f"wait idle 600\nscreenshot {o}/reopened.png\nquit\n")
+        self.assertEqual(differs(o / "undone.png", o / "reopened.png"), 0.0)
+        arbor("run", "--session", o / "session.json", "--no-cache", "-o", o / "run.png")
+        self.assertEqual(differs(o / "undone.png", o / "run.png"), 0.0, "arbor run --session gives the same image")
+
+    def test_no_frame_over_100_ms_while_the_tree_was_computed(self):
+        lines = self.frame_log.read_text().splitlines()
+        self.assertEqual(lines[0], "time_s frame_ms jobs")
+        frames = [line.split(" ", 2) for line in lines[1:]]
+        # The first frames compile the software OpenGL's shaders: not counted.
+        during = [(float(t), float(ms)) for t, ms, jobs in frames[5:] if "contour_tree" in jobs]
+        self.assertGreater(len(during), 10, "frames were drawn while the tree was computed")
+        worst = max(ms for _, ms in during)
+        self.assertLess(worst, 100, f"the slowest frame while the tree was computed took {worst} ms")
+
+    def test_bad_scripts_name_their_line(self):
+        status, _, err = view(script="open /no/such/scan.nrrd\nquit\n", check=False)
+        self.assertNotEqual(status, 0)
+        self.assertIn(":1: open:", err)
+        self.assertIn("no such file", err)
+        status, _, err = view(script="wait idle\nfly to the moon\n", check=False)
+        self.assertNotEqual(status, 0)
+        self.assertIn(":2: unknown command 'fly'", err)
+        status, _, err = view("--phantom", "head", script="wait idle 300\nset flowrate 3\nquit\n", check=False)
+        self.assertNotEqual(status, 0)
+        self.assertIn(":2: set: no control named 'flowrate'", err)
+
+
+if __name__ == "__main__":
+    unittest.main()
