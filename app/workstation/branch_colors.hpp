@@ -14,4 +14,9 @@ namespace arbor::workstation {
 // distinguishable label colour (io/label_colors.hpp).
 std::vector<std::array<float, 3>> branch_colors(const TransferFunctions &functions);
 
+// The same hues made vivid for drawing over grey slices (a pale, desaturated
+// transfer-function colour vanishes over bone): saturation at least 0.65
+// and value at least 0.9; a grey branch gets its distinguishable label hue.
+std::vector<std::array<float, 3>> overlay_colors(const std::vector<std::array<float, 3>> &colors);
+
 } // namespace arbor::workstation

@@ -12,19 +12,7 @@ namespace {
 using pipeline::Document;
 using pipeline::PluginSetting;
 
-double number(const std::string &name, const std::string &text)
-{
-    std::size_t used = 0;
-    double x = 0;
-    try {
-        x = std::stod(text, &used);
-    } catch (const std::exception &) {
-        used = 0;
-    }
-    if (used != text.size() || !std::isfinite(x))
-        throw std::invalid_argument(name + ": '" + text + "' is not a number");
-    return x;
-}
+double number(const std::string &name, const std::string &text) { return parse_number(text, name); }
 
 bool boolean(const std::string &name, const std::string &text)
 {
@@ -213,6 +201,20 @@ std::pair<PluginSetting *, std::string> find_param(Document &d, const std::strin
 }
 
 } // namespace
+
+double parse_number(const std::string &text, const std::string &what)
+{
+    std::size_t used = 0;
+    double x = 0;
+    try {
+        x = std::stod(text, &used);
+    } catch (const std::exception &) {
+        used = 0;
+    }
+    if (text.empty() || used != text.size() || !std::isfinite(x))
+        throw std::invalid_argument(what + ": '" + text + "' is not a number");
+    return x;
+}
 
 void set_control(Document &document, const std::string &name, const std::string &text,
                  const pipeline::PluginCatalog &catalog)

@@ -26,6 +26,10 @@ void set_control(pipeline::Document &document, const std::string &name, const st
 std::string control_value(const pipeline::Document &document, const std::string &name,
                           const pipeline::PluginCatalog &catalog);
 
+// `text` as a finite number; std::invalid_argument naming `what` otherwise
+// (the script's and the controls' arguments).
+double parse_number(const std::string &text, const std::string &what);
+
 // The names set_control takes for this document: the built-in ones, then
 // each plugin parameter.
 std::vector<std::string> control_names(const pipeline::Document &document, const pipeline::PluginCatalog &catalog);

@@ -1,6 +1,9 @@
 #include "recovery.hpp"
 
+#include "workstation.hpp"
+
 #include "core/atomic_file.hpp"
+#include "pipeline/session.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -22,6 +25,31 @@ fs::path state_folder()
 }
 
 fs::path recovery_path() { return state_folder() / "recovery.arbor-session.json"; }
+
+void Autosave::tick(Workstation &ws, double now)
+{
+    if (!ws.has_input() || now - last_ < 2)
+        return;
+    last_ = now;
+    try {
+        const pipeline::Document d = ws.pipeline().document();
+        const std::string text = pipeline::session_text(d, ws.catalog(), path_.parent_path());
+        if (text == saved_)
+            return;
+        fs::create_directories(path_.parent_path());
+        pipeline::write_session(path_, d, ws.catalog());
+        saved_ = text;
+    } catch (const std::exception &e) {
+        ws.say(ARBOR_LOG_WARNING, std::string("autosave: ") + e.what());
+        last_ = now + 58; // tell again in a minute, not every frame
+    }
+}
+
+void Autosave::finish()
+{
+    std::error_code ec;
+    fs::remove(path_, ec);
+}
 
 std::vector<fs::path> recent_files()
 {

@@ -1,5 +1,6 @@
 #include "script.hpp"
 
+#include "controls.hpp"
 #include "workstation.hpp"
 
 #include <cmath>
@@ -25,19 +26,7 @@ const std::map<std::string, std::pair<std::size_t, std::size_t>> &commands()
     return table;
 }
 
-double number(const std::string &text, const std::string &what)
-{
-    std::size_t used = 0;
-    double x = 0;
-    try {
-        x = std::stod(text, &used);
-    } catch (const std::exception &) {
-        used = 0;
-    }
-    if (used != text.size() || !std::isfinite(x))
-        throw std::invalid_argument(what + ": '" + text + "' is not a number");
-    return x;
-}
+double number(const std::string &text, const std::string &what) { return parse_number(text, what); }
 
 // Words split on blanks; the last argument of `open`, `set` and the file
 // commands may contain blanks (a path): the rest of the line.

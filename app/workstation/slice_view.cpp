@@ -38,7 +38,10 @@ void SliceView::draw(Workstation &ws)
     const auto tf = ws.pipeline().latest<Stage::TransferFunctions>();
     const bool labelled = v.overlay && labels && tf && labels->labels.size() == static_cast<std::size_t>(volume.voxel_count()) &&
                           tf->functions->branch_count() == labels->names.size();
-    const std::vector<std::array<float, 3>> &colors = ws.colors();
+    if (labelled && overlay_of_ != tf->functions) {
+        overlay_colors_ = overlay_colors(ws.colors());
+        overlay_of_ = tf->functions;
+    }
     const auto selected = ws.document().appearance.selected;
     Key key{filtered->revision, labelled ? labels->revision : 0, slice, v.window.width, v.window.level,
             v.overlay_opacity, labelled, selected ? std::optional<uint32_t>(static_cast<uint32_t>(*selected)) : std::nullopt,
@@ -47,7 +50,7 @@ void SliceView::draw(Workstation &ws)
         LabelOverlay overlay;
         if (labelled) {
             overlay.labels = &labels->labels;
-            overlay.colors = &colors;
+            overlay.colors = &overlay_colors_;
             overlay.opacity = v.overlay_opacity;
             overlay.selected = key.selected;
             overlay.hidden = &key.hidden;

@@ -12,7 +12,10 @@
 #include "slice_image.hpp"
 #include "window_level.hpp"
 
+#include "host/tf_generation.hpp"
+
 #include <array>
+#include <memory>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -41,6 +44,8 @@ private:
     SliceOrientation orientation_;
     GlTexture texture_;
     SliceImage image_; // reused
+    std::vector<std::array<float, 3>> overlay_colors_; // of overlay_of_
+    std::shared_ptr<const TransferFunctions> overlay_of_;
     Key shown_;
 };
 

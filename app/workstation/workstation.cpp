@@ -392,6 +392,14 @@ bool Workstation::pick(double x, double y)
     for (int a = 0; a < 3; ++a)
         ijk[a] = static_cast<int64_t>(std::llround(scaled[a] / g.spacing[a]));
     move_crosshair(ijk);
+    // The structure picked is selected, as a click on a slice selects.
+    const auto labels = pipeline_.latest<Stage::Labels>();
+    if (labels && labels->labels.size() == static_cast<std::size_t>(g.voxel_count())) {
+        const auto &c = view_.crosshair;
+        const uint32_t label = labels->labels[static_cast<std::size_t>(c[0] + g.dims[0] * (c[1] + g.dims[1] * c[2]))];
+        if (label > 0)
+            select(static_cast<int32_t>(label));
+    }
     return true;
 }
 

@@ -104,7 +104,8 @@ public:
     void window_preset(const std::string &name); // a CT preset, or "auto"
     void move_crosshair(const std::array<int64_t, 3> &ijk);
     // The crosshair to the first opaque point under pixel (x, y) of the 3D
-    // view's latest frame; false when the ray hit nothing.
+    // view's latest frame, and the branch there selected (but the root);
+    // false when the ray hit nothing.
     bool pick(double x, double y);
 
     // The 3D view's size in pixels (the viewport); not an undo step.

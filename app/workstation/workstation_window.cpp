@@ -117,9 +117,7 @@ private:
     char path_entry_[1024] = "";
     bool open_dialog_ = false, save_dialog_ = false, restore_offer_ = false;
     std::string save_kind_; // "session", "screenshot", "window", "labels", "tf"
-    std::size_t autosaved_at_ = 0;
-    double autosaved_time_ = -10;
-    pipeline::Document autosaved_;
+    Autosave autosave_;
 };
 
 std::string Window::job_summary() const
@@ -173,20 +171,8 @@ void Window::open(const fs::path &path)
 
 void Window::autosave()
 {
-    if (!options_.recovery || !ws_.has_input())
-        return;
-    const double now = seconds();
-    if (ws_.document() == autosaved_ || now - autosaved_time_ < 2)
-        return;
-    try {
-        fs::create_directories(state_folder());
-        pipeline::write_session(recovery_path(), ws_.pipeline().document(), ws_.catalog());
-        autosaved_ = ws_.document();
-        autosaved_time_ = now;
-    } catch (const std::exception &e) {
-        ws_.say(ARBOR_LOG_WARNING, std::string("autosave: ") + e.what());
-        autosaved_time_ = now + 60; // do not repeat the warning every frame
-    }
+    if (options_.recovery)
+        autosave_.tick(ws_, seconds());
 }
 
 void Window::menu()
@@ -542,10 +528,8 @@ int Window::run()
         std::fprintf(stderr, "arbor view: %s\n", e.what());
         status = 1;
     }
-    if (options_.recovery && status == 0) {
-        std::error_code ec;
-        fs::remove(recovery_path(), ec); // a normal end: nothing to recover
-    }
+    if (options_.recovery && status == 0)
+        autosave_.finish(); // a normal end: nothing to recover
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();

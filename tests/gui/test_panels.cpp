@@ -8,8 +8,7 @@
 #include "workstation/priority_line_view.hpp"
 #include "workstation/tree_view.hpp"
 #include "workstation/workstation.hpp"
-
-#include "plugin_fixture.hpp"
+#include "workstation_fixture.hpp"
 
 #include <gtest/gtest.h>
 #include <imgui.h>
@@ -63,25 +62,11 @@ public:
     }
 };
 
-void wait_idle(Workstation &ws)
-{
-    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    while (!ws.idle()) {
-        ws.poll();
-        ASSERT_LT(std::chrono::steady_clock::now(), end);
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-}
+using test_support::wait_idle;
 
 std::unique_ptr<Workstation> phantom()
 {
-    auto ws = std::make_unique<Workstation>(test::built_plugins(), pipeline::PipelineOptions{});
-    ws->set_viewport(64, 64);
-    pipeline::Document d = ws->document();
-    d.input.phantom = pipeline::PhantomInput{"head", 64};
-    d.view.renderer.id = "cpu-raycast";
-    d.cut.keep = 4;
-    ws->open_document(d, "open");
+    auto ws = test_support::phantom_workstation(64, 4);
     wait_idle(*ws);
     return ws;
 }

@@ -2,9 +2,9 @@
 // real plugins: what a person's actions do to the pipeline and the views'
 // state, each checked against an independent answer (the pipeline run
 // directly, the phantom's geometry).
+#include "workstation/recovery.hpp"
 #include "workstation/workstation.hpp"
-
-#include "plugin_fixture.hpp"
+#include "workstation_fixture.hpp"
 
 #include "pipeline/session.hpp"
 
@@ -18,29 +18,8 @@ namespace {
 
 using pipeline::Stage;
 
-// Polls as the UI loop does until every job is done and the 3D view current.
-void wait_idle(Workstation &ws, double seconds = 120)
-{
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    for (;;) {
-        ws.poll();
-        if (ws.idle())
-            return;
-        ASSERT_LT(std::chrono::steady_clock::now(), end) << "not idle after " << seconds << " s";
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-}
-
-std::unique_ptr<Workstation> phantom_workstation()
-{
-    auto ws = std::make_unique<Workstation>(test::built_plugins(), pipeline::PipelineOptions{});
-    ws->set_viewport(96, 96);
-    pipeline::Document d = ws->document();
-    d.input.phantom = pipeline::PhantomInput{"head", 64};
-    d.view.renderer.id = "cpu-raycast";
-    ws->open_document(d, "open the phantom");
-    return ws;
-}
+using test_support::phantom_workstation;
+using test_support::wait_idle;
 
 TEST(Workstation, OpensRendersAndUndoesEveryChange)
 {
@@ -166,6 +145,13 @@ TEST(Workstation, PickingTheCentreOfTheViewHitsTheHeadsSurfaceInFront)
     EXPECT_NEAR(c[2], dims[2] / 2, 3);
     EXPECT_LT(c[1], dims[1] / 2) << "the first opaque point is in front of the centre";
     EXPECT_FALSE(ws->pick(1, 1)) << "a corner ray hits nothing";
+    // What was picked is selected, as a click on a slice selects.
+    const auto labels = ws->pipeline().latest<Stage::Labels>();
+    const uint32_t under = labels->labels[static_cast<std::size_t>(c[0] + dims[0] * (c[1] + dims[1] * c[2]))];
+    if (under > 0)
+        EXPECT_EQ(ws->document().appearance.selected, std::optional<int32_t>(static_cast<int32_t>(under)));
+    else
+        EXPECT_FALSE(ws->document().appearance.selected);
 }
 
 TEST(Workstation, SessionsRoundTripToTheSameDocument)
@@ -189,6 +175,32 @@ TEST(Workstation, SessionsRoundTripToTheSameDocument)
     EXPECT_EQ(again->branch_style(2), style) << "branch styles are part of the session";
     EXPECT_EQ(again->pipeline().latest<Stage::Render>()->image.rgba, ws->pipeline().latest<Stage::Render>()->image.rgba);
     EXPECT_THROW(again->open(test::scratch_dir() / "no-such-file.nrrd"), std::invalid_argument);
+}
+
+TEST(Workstation, TheAutosaveKeepsTheLatestSessionAndANormalEndRemovesIt)
+{
+    auto ws = phantom_workstation();
+    wait_idle(*ws);
+    const std::filesystem::path path = test::scratch_dir() / "recovery" / "recovery.arbor-session.json";
+    std::filesystem::remove(path);
+    Autosave autosave(path);
+    autosave.tick(*ws, 10.0);
+    ASSERT_TRUE(std::filesystem::exists(path));
+    const auto read = [&] { return pipeline::read_session(path, ws->catalog()).document; };
+    EXPECT_EQ(read(), ws->pipeline().document());
+    // At most every two seconds; then the newest choices.
+    ws->set("keep", "3");
+    autosave.tick(*ws, 11.0);
+    EXPECT_NE(read().cut.keep, std::optional<std::size_t>(3));
+    autosave.tick(*ws, 12.5);
+    EXPECT_EQ(read().cut.keep, std::optional<std::size_t>(3));
+    // What a restore opens: the same document.
+    auto restored = std::make_unique<Workstation>(test::built_plugins(), pipeline::PipelineOptions{});
+    restored->set_viewport(96, 96);
+    restored->open(path);
+    EXPECT_EQ(restored->pipeline().document(), ws->pipeline().document());
+    autosave.finish();
+    EXPECT_FALSE(std::filesystem::exists(path));
 }
 
 TEST(Workstation, APreviewNeedsNoTopology)
