@@ -34,8 +34,18 @@ bool param_widget(const arbor_param_desc &desc, std::string &text, bool &live)
         const bool integer = desc.type == ARBOR_PARAM_INT;
         double lo = desc.min_value, hi = desc.max_value;
         if (desc.components == 1 && std::isfinite(lo) && std::isfinite(hi) && hi - lo < 1e9) {
-            const bool wide = (desc.flags & ARBOR_PARAM_FLAG_LOG_SCALE) || (lo >= 0 && hi > 1000 * std::max(1.0, lo));
-            ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp | (wide ? ImGuiSliderFlags_Logarithmic : 0);
+            // A range far wider than the values in use ([0, 1e6] for a flow
+            // rate of 60) gets a slider over ten times the default (or the
+            // value); Ctrl+click types any value within the real bounds.
+            // (Of the default only, so the scale does not move under a drag; a
+            // typed value beyond it stretches it.)
+            const double typical = std::max(std::fabs(desc.default_value[0]), 1.0);
+            const bool soft = hi - lo > 1000 * typical;
+            if (soft)
+                hi = std::min(hi, std::max(lo + 10 * typical, v.number[0]));
+            const bool logarithmic = (desc.flags & ARBOR_PARAM_FLAG_LOG_SCALE) != 0;
+            const ImGuiSliderFlags flags = (soft ? 0 : ImGuiSliderFlags_AlwaysClamp) |
+                                           (logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
             changed = ImGui::SliderScalar(label, ImGuiDataType_Double, &v.number[0], &lo, &hi, integer ? "%.0f" : "%.4g", flags);
         } else {
             changed = ImGui::InputScalarN(label, ImGuiDataType_Double, v.number, static_cast<int>(desc.components), nullptr,

@@ -4,8 +4,9 @@
 // filter, the simplifier, the relationship depicted, the transfer-function
 // generator (flow rate Q as a slider, shape, hue template), the legend and
 // the renderer, each a choice of the installed plugins of its kind and its
-// parameters (sliders within their ranges, logarithmic where the range is
-// wide, check boxes, choices, text; ADVANCED ones folded away).  A drag is
+// parameters (sliders within their ranges - over ten times the default
+// where the range is far wider, Ctrl+click for any value - logarithmic where
+// the plugin says so, check boxes, choices, text; ADVANCED ones folded away).  A drag is
 // one undo step: the value follows the slider live and is recorded when it
 // is released.
 #pragma once

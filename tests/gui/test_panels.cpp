@@ -5,6 +5,7 @@
 // names, dragging the priority line sets the threshold, the branch list
 // selects and hides, and a hidden branch is gone from the 3D view.
 #include "workstation/branch_list.hpp"
+#include "workstation/parameter_panel.hpp"
 #include "workstation/priority_line_view.hpp"
 #include "workstation/tree_view.hpp"
 #include "workstation/workstation.hpp"
@@ -12,6 +13,7 @@
 
 #include <gtest/gtest.h>
 #include <imgui.h>
+#include <imgui_internal.h> // GetHoveredID: where a generated control is
 
 #include <chrono>
 #include <functional>
@@ -149,6 +151,53 @@ TEST(Panels, TheBranchListSelectsAndHides)
     EXPECT_TRUE(ws->hidden_labels()[2]);
     EXPECT_FALSE(ws->branch_style(2).visible);
     EXPECT_EQ(ws->document().view.branch_styles.size(), 1u);
+}
+
+TEST(Panels, TheGeneratedFlowRateSliderMovesTheFlowRateAsOneUndoStep)
+{
+    auto ws = phantom();
+    Gui gui;
+    ParameterPanel panel;
+    // The slider's id as the panel makes it: the plugin slot, the parameter
+    // id, the parameter's label (parameter_panel.cpp's ID stack).
+    ImGuiID slider = 0;
+    const auto draw = [&] {
+        panel.draw(*ws);
+        ImGui::PushID("generator");
+        ImGui::PushID("flow-rate");
+        slider = ImGui::GetID("Flow rate Q");
+        ImGui::PopID();
+        ImGui::PopID();
+    };
+    gui.frame(draw, {0, 0}, false);
+    std::optional<ImVec2> at;
+    for (float y = 5; y < 400 && !at; y += 4)
+        for (float x = 20; x < 200 && !at; x += 40) {
+            gui.frame(draw, {x, y}, false);
+            if (ImGui::GetCurrentContext()->HoveredIdPreviousFrame == slider)
+                at = ImVec2{x, y};
+        }
+    ASSERT_TRUE(at) << "no flow-rate slider in the panel";
+    const std::string before = ws->document().appearance.generator.params.at("flow-rate");
+    const std::size_t steps = ws->history().names().size();
+    // A press sets the value under the mouse (ImGui's sliders); dragging
+    // to the right raises it live; the release makes the whole drag one step.
+    gui.frame(draw, *at, true);
+    gui.frame(draw, *at, true);
+    const double pressed = std::stod(ws->document().appearance.generator.params.at("flow-rate"));
+    EXPECT_GT(pressed, 0);
+    EXPECT_LE(pressed, 600) << "the slider spans ten times the default, not the plugin's 1e6";
+    for (float dx = 10; dx <= 60; dx += 10)
+        gui.frame(draw, {at->x + dx, at->y}, true);
+    const std::string during = ws->document().appearance.generator.params.at("flow-rate");
+    EXPECT_GT(std::stod(during), pressed) << "dragging right raises Q";
+    gui.frame(draw, {at->x + 60, at->y}, false);
+    gui.frame(draw, {at->x + 60, at->y}, false);
+    EXPECT_EQ(ws->history().names().size(), steps + 1) << "the drag is one undo step";
+    EXPECT_EQ(ws->pipeline().document().appearance.generator.params.at("flow-rate"), during)
+        << "the pipeline has the value the slider shows";
+    ASSERT_TRUE(ws->undo());
+    EXPECT_EQ(ws->document().appearance.generator.params.at("flow-rate"), before);
 }
 
 } // namespace
