@@ -5,17 +5,21 @@
 // names, dragging the priority line sets the threshold, the branch list
 // selects and hides, and a hidden branch is gone from the 3D view.
 #include "workstation/branch_list.hpp"
+#include "workstation/dicom_browser.hpp"
 #include "workstation/parameter_panel.hpp"
 #include "workstation/priority_line_view.hpp"
 #include "workstation/tree_view.hpp"
 #include "workstation/workstation.hpp"
 #include "workstation_fixture.hpp"
 
+#include "dicom/folder_scan.hpp"
+
 #include <gtest/gtest.h>
 #include <imgui.h>
 #include <imgui_internal.h> // GetHoveredID: where a generated control is
 
 #include <chrono>
+#include <filesystem>
 #include <functional>
 #include <thread>
 
@@ -198,6 +202,47 @@ TEST(Panels, TheGeneratedFlowRateSliderMovesTheFlowRateAsOneUndoStep)
         << "the pipeline has the value the slider shows";
     ASSERT_TRUE(ws->undo());
     EXPECT_EQ(ws->document().appearance.generator.params.at("flow-rate"), before);
+}
+
+// Draws the browser until its scan is done (at most two minutes).
+void scan_to_the_end(Gui &gui, DicomBrowser &browser, Workstation &ws)
+{
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    do {
+        gui.frame([&] { browser.draw(ws); }, {0, 0}, false);
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    } while (browser.scanning() && std::chrono::steady_clock::now() < end);
+    gui.frame([&] { browser.draw(ws); }, {0, 0}, false);
+    ASSERT_FALSE(browser.scanning());
+}
+
+TEST(Panels, ADicomFolderWithOneSeriesOpensItAtOnce)
+{
+    Workstation ws(test::built_plugins(), pipeline::PipelineOptions{});
+    Gui gui;
+    DicomBrowser browser;
+    const auto folder = test::shared_data("dicom_ct_head_0051");
+    browser.scan(folder, true);
+    scan_to_the_end(gui, browser, ws);
+    ASSERT_TRUE(ws.has_input());
+    EXPECT_EQ(ws.document().input.path, folder);
+    // The series the folder scan found, by its UID (the importer reads that one).
+    const auto scan = dicom::scan_dicom(folder);
+    ASSERT_EQ(scan.series.size(), 1u);
+    EXPECT_EQ(ws.document().input.importer.params.at("series"), scan.series[0].uid);
+    EXPECT_FALSE(browser.shown()) << "the browser closes once the series is open";
+    ws.pipeline().cancel_all();
+}
+
+TEST(Panels, ADicomFolderWithSeveralSeriesWaitsForAChoice)
+{
+    Workstation ws(test::built_plugins(), pipeline::PipelineOptions{});
+    Gui gui;
+    DicomBrowser browser;
+    browser.scan(test::shared_data("dicom_pydicom_variants"), true);
+    scan_to_the_end(gui, browser, ws);
+    EXPECT_FALSE(ws.has_input()) << "nothing opened before a person chooses";
+    EXPECT_TRUE(browser.shown());
 }
 
 } // namespace
