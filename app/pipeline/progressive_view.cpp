@@ -42,6 +42,14 @@ uint64_t ProgressiveView::touch()
     return n;
 }
 
+void ProgressiveView::cancel()
+{
+    std::lock_guard lock(mutex_);
+    halted_ = touches_;
+    rendering_.request_stop();
+    changed_.notify_all();
+}
+
 std::shared_ptr<const ProgressiveView::Frame> ProgressiveView::latest() const
 {
     std::lock_guard lock(mutex_);
@@ -93,6 +101,10 @@ void ProgressiveView::loop()
             for (;;) {
                 if (quit_)
                     return;
+                if (touches_ == halted_ && touches_ > 0) {
+                    changed_.wait(lock); // cancelled: rest until the next touch
+                    continue;
+                }
                 if (touches_ > done) {
                     coarse = true;
                     break;

@@ -50,6 +50,8 @@ public:
     // The document changed (set it on the pipeline first): a coarse frame
     // now, refinement once the user is idle.  Returns the touch's number.
     uint64_t touch();
+    // Stops the pass in flight; nothing more is rendered until the next touch.
+    void cancel();
     std::shared_ptr<const Frame> latest() const;
     // The latest frame once it answers touch `touch` at `pass` or better
     // (COARSE < FULL < SUPERSAMPLE with `samples` passes); nullptr on
@@ -68,6 +70,7 @@ private:
     mutable std::mutex mutex_;
     mutable std::condition_variable changed_;
     uint64_t touches_ = 0;
+    uint64_t halted_ = 0; // the touch cancel() stopped (touches_ == halted_: rest)
     std::chrono::steady_clock::time_point last_touch_;
     std::stop_source rendering_; // of the pass in flight
     bool quit_ = false;

@@ -9,8 +9,16 @@ namespace arbor::workstation {
 void JobPanel::draw(Workstation &ws)
 {
     const auto jobs = ws.jobs();
-    if (jobs.empty())
+    if (ws.cancelled()) {
+        if (ImGui::SmallButton("Resume"))
+            ws.resume();
+        ImGui::SameLine();
+        ImGui::TextDisabled("cancelled");
+    } else if (jobs.empty()) {
         ImGui::TextDisabled(ws.idle() ? "idle" : "rendering");
+    } else if (ImGui::SmallButton("Cancel all")) {
+        ws.cancel();
+    }
     for (const auto &job : jobs) {
         ImGui::PushID(static_cast<int>(job->serial()));
         const std::string activity = job->activity();

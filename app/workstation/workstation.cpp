@@ -83,6 +83,7 @@ Document Workstation::for_pipeline(Document d) const
 void Workstation::show(const Document &document)
 {
     pipeline_.set_document(for_pipeline(document));
+    cancelled_ = false;
     if (!document.input.empty())
         touch_ = view3d_->touch();
 }
@@ -473,6 +474,22 @@ void Workstation::volume_changed()
     filter_revision_ = filtered->revision;
 }
 
+void Workstation::cancel()
+{
+    cancelled_ = true;
+    pipeline_.cancel_all();
+    view3d_->cancel();
+    say(ARBOR_LOG_INFO, "cancelled; Resume computes again");
+}
+
+void Workstation::resume()
+{
+    cancelled_ = false;
+    requested_ = {};
+    if (has_input())
+        touch_ = view3d_->touch();
+}
+
 void Workstation::request_views()
 {
     // Once per change of the choices: a stage that failed is not asked again
@@ -490,7 +507,7 @@ void Workstation::request_views()
 
 void Workstation::poll()
 {
-    if (!has_input())
+    if (!has_input() || cancelled_)
         return;
     request_views();
     const auto filtered = pipeline_.latest<Stage::Filter>();
@@ -505,6 +522,8 @@ void Workstation::poll()
 
 bool Workstation::idle() const
 {
+    if (cancelled_)
+        return pipeline_.active_jobs().empty();
     if (!has_input())
         return pipeline_.active_jobs().empty();
     if (!pipeline_.active_jobs().empty())

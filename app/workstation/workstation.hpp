@@ -122,6 +122,12 @@ public:
     void export_labels(const std::filesystem::path &path);
     void export_transfer_functions(const std::filesystem::path &path);
 
+    // Cancel: every job and the render in flight stop; nothing is asked
+    // again until resume() or the next change (the Jobs panel offers Resume).
+    void cancel();
+    void resume();
+    bool cancelled() const { return cancelled_; }
+
     // Once per UI frame: requests what the views need, picks up new results.
     void poll();
     // Every job done and the 3D view showing the pipeline's current frame.
@@ -160,6 +166,7 @@ private:
     uint64_t filter_revision_ = 0; // of the volume the view state was set for
     std::deque<Message> messages_;
     std::string error_;
+    bool cancelled_ = false;
     std::array<uint64_t, pipeline::kGroupCount> requested_{};
     std::vector<std::array<float, 3>> colors_;
     const void *colors_of_ = nullptr; // the transfer functions colors_ are of // the revisions poll() last asked for

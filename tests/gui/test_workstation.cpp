@@ -203,6 +203,41 @@ TEST(Workstation, TheAutosaveKeepsTheLatestSessionAndANormalEndRemovesIt)
     EXPECT_FALSE(std::filesystem::exists(path));
 }
 
+TEST(Workstation, CancelStopsEveryJobUntilResume)
+{
+    auto ws = std::make_unique<Workstation>(test::built_plugins(), pipeline::PipelineOptions{});
+    ws->set_viewport(48, 48);
+    pipeline::Document d = ws->document();
+    d.input.phantom = pipeline::PhantomInput{"head", 160, 4.0};
+    d.view.renderer.id = "cpu-raycast";
+    ws->open_document(d, "open");
+    // Cancel while the contour tree is computed.
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    bool computing = false;
+    while (!computing && std::chrono::steady_clock::now() < end) {
+        ws->poll();
+        for (const auto &job : ws->jobs())
+            computing = computing || (job->stage() == Stage::ContourTree && job->state() == pipeline::JobState::Running);
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ASSERT_TRUE(computing);
+    ws->cancel();
+    wait_idle(*ws, 60);
+    EXPECT_TRUE(ws->cancelled());
+    EXPECT_TRUE(ws->jobs().empty());
+    EXPECT_FALSE(ws->pipeline().is_current(Stage::ContourTree));
+    // Nothing starts again by itself.
+    for (int i = 0; i < 20; ++i) {
+        ws->poll();
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    EXPECT_TRUE(ws->jobs().empty());
+    ws->resume();
+    EXPECT_FALSE(ws->cancelled());
+    wait_idle(*ws, 300);
+    EXPECT_TRUE(ws->pipeline().is_current(Stage::Render));
+}
+
 TEST(Workstation, APreviewNeedsNoTopology)
 {
     // What the 3D view shows while the contour tree is computed: the volume
