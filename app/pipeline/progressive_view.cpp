@@ -74,16 +74,26 @@ std::shared_ptr<const ProgressiveView::Frame> ProgressiveView::wait_for(uint64_t
     return ok ? latest_ : nullptr;
 }
 
+void ProgressiveView::on_frame(std::function<void()> callback)
+{
+    std::lock_guard lock(mutex_);
+    on_frame_ = std::move(callback);
+}
+
 void ProgressiveView::publish(std::shared_ptr<const Frame> frame)
 {
+    std::function<void()> tell;
     {
         std::lock_guard lock(mutex_);
         if (frame->touch != touches_)
             return; // answered a touch that has been overtaken
         latest_ = std::move(frame);
         error_.clear();
+        tell = on_frame_;
     }
     changed_.notify_all();
+    if (tell)
+        tell();
 }
 
 void ProgressiveView::loop()

@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -52,6 +53,9 @@ public:
     uint64_t touch();
     // Stops the pass in flight; nothing more is rendered until the next touch.
     void cancel();
+    // Called on the rendering thread after each frame is published (a
+    // front wakes its event loop with it: glfwPostEmptyEvent); empty: none.
+    void on_frame(std::function<void()> callback);
     std::shared_ptr<const Frame> latest() const;
     // The latest frame once it answers touch `touch` at `pass` or better
     // (COARSE < FULL < SUPERSAMPLE with `samples` passes); nullptr on
@@ -75,6 +79,7 @@ private:
     std::stop_source rendering_; // of the pass in flight
     bool quit_ = false;
     std::shared_ptr<const Frame> latest_;
+    std::function<void()> on_frame_;
     std::string error_;
     std::thread worker_;
 };
