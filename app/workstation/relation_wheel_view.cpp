@@ -10,6 +10,13 @@ namespace arbor::workstation {
 
 void RelationWheelView::draw(Workstation &ws)
 {
+    if (texture_.empty()) {
+        // Drawn once at startup: the software OpenGL compiles its shader for
+        // linear filtering now, not when the first legend arrives mid-job.
+        const uint8_t clear[4] = {0, 0, 0, 0};
+        texture_.upload(clear, 1, 1, true);
+        ImGui::Image(texture_.imgui_id(), ImVec2(1, 1));
+    }
     const auto legend = ws.pipeline().latest<pipeline::Stage::Legend>();
     if (ws.document().appearance.legend.empty()) {
         ImGui::TextDisabled("no legend (choose one under Legend)");

@@ -69,15 +69,19 @@ void VolumeView::draw(Workstation &ws)
         const auto &bg = ws.document().view.background;
         const float back[3] = {static_cast<float>(bg[0]), static_cast<float>(bg[1]), static_cast<float>(bg[2])};
         const std::vector<uint8_t> rgba = to_rgba8(frame->image.rgba, back);
-        texture_.upload(rgba.data(), frame->image.width, frame->image.height, true);
+        // Shown pixel for pixel: nearest sampling is exact, and a software
+        // OpenGL's bilinear filter costs a good part of a frame.
+        texture_.upload(rgba.data(), frame->image.width, frame->image.height, false);
         shown_ = frame.get();
     }
     if (texture_.empty()) {
         // A black pixel until the first frame: drawing a texture the first
         // time makes a software OpenGL compile its shader (hundreds of ms on
         // llvmpipe), better at startup than while the first jobs run.
+        // (The relation wheel's scaled, linearly filtered texture draws from
+        // the start too, with its placeholder.)
         const uint8_t black[4] = {0, 0, 0, 255};
-        texture_.upload(black, 1, 1, true);
+        texture_.upload(black, 1, 1, false);
     }
     const ImVec2 lo = ImGui::GetCursorScreenPos();
     const ImVec2 hi{lo.x + w, lo.y + h};

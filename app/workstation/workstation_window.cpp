@@ -380,25 +380,30 @@ void Window::layout()
     const float view_h = h * 0.64f;
     place(left_w, top, centre_w, view_h);
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, {0, 0});
-    if (ImGui::Begin("3D view", nullptr, fixed | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse))
+    // The views that fill their windows draw no window background: one
+    // fill of the screen less a frame on a software OpenGL (the clear colour
+    // below is the style's window colour).
+    if (ImGui::Begin("3D view", nullptr,
+                     fixed | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse | ImGuiWindowFlags_NoBackground))
         volume_.draw(ws_);
     ImGui::End();
     ImGui::PopStyleVar();
     for (int i = 0; i < 3; ++i) {
         place(left_w + centre_w * i / 3.0f, top + view_h, centre_w / 3.0f, h - view_h);
         if (ImGui::Begin(orientation_name(slices_[i].orientation()), nullptr,
-                         fixed | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse))
+                         fixed | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse |
+                             ImGuiWindowFlags_NoBackground))
             slices_[i].draw(ws_);
         ImGui::End();
     }
     // Right: tree, priority lines, branches.
     const float rx = left_w + centre_w;
     place(rx, top, right_w, h * 0.30f);
-    if (ImGui::Begin("Tree", nullptr, fixed | ImGuiWindowFlags_NoScrollbar))
+    if (ImGui::Begin("Tree", nullptr, fixed | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoBackground))
         tree_.draw(ws_);
     ImGui::End();
     place(rx, top + h * 0.30f, right_w, h * 0.32f);
-    if (ImGui::Begin("Priority lines", nullptr, fixed | ImGuiWindowFlags_NoScrollbar))
+    if (ImGui::Begin("Priority lines", nullptr, fixed | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoBackground))
         priority_.draw(ws_);
     ImGui::End();
     place(rx, top + h * 0.62f, right_w, h * 0.38f);
@@ -449,7 +454,8 @@ void Window::frame()
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(window_, &fw, &fh);
     glViewport(0, 0, fw, fh);
-    glClearColor(0.08f, 0.08f, 0.09f, 1);
+    const ImVec4 back = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+    glClearColor(back.x, back.y, back.z, 1);
     glClear(GL_COLOR_BUFFER_BIT);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (capture_) {
