@@ -205,12 +205,7 @@ TEST(Workstation, TheAutosaveKeepsTheLatestSessionAndANormalEndRemovesIt)
 
 TEST(Workstation, CancelStopsEveryJobUntilResume)
 {
-    auto ws = std::make_unique<Workstation>(test::built_plugins(), pipeline::PipelineOptions{});
-    ws->set_viewport(48, 48);
-    pipeline::Document d = ws->document();
-    d.input.phantom = pipeline::PhantomInput{"head", 160, 4.0};
-    d.view.renderer.id = "cpu-raycast";
-    ws->open_document(d, "open");
+    auto ws = test_support::slow_phantom_workstation();
     // Cancel while the contour tree is computed.
     const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
     bool computing = false;
@@ -265,12 +260,7 @@ TEST(Workstation, TheFirstFrameOfANewScanIsAPreviewWhenTheTreeIsNotReady)
 {
     // The preview waits for the filtered volume only; the tree of a noisy
     // 160^3 phantom takes seconds after that, the coarse preview milliseconds.
-    auto ws = std::make_unique<Workstation>(test::built_plugins(), pipeline::PipelineOptions{});
-    ws->set_viewport(48, 48);
-    pipeline::Document d = ws->document();
-    d.input.phantom = pipeline::PhantomInput{"head", 160, 4.0};
-    d.view.renderer.id = "cpu-raycast";
-    ws->open_document(d, "open");
+    auto ws = test_support::slow_phantom_workstation();
     std::shared_ptr<const pipeline::ProgressiveView::Frame> first;
     const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(120);
     while (!first && std::chrono::steady_clock::now() < end) {

@@ -40,4 +40,17 @@ inline std::unique_ptr<Workstation> phantom_workstation(uint32_t viewport = 96, 
     return ws;
 }
 
+// A noisy 160^3 phantom in a 48 x 48 view: its contour tree takes seconds,
+// long enough to act while it is computed.
+inline std::unique_ptr<Workstation> slow_phantom_workstation()
+{
+    auto ws = std::make_unique<Workstation>(test::built_plugins(), pipeline::PipelineOptions{});
+    ws->set_viewport(48, 48);
+    pipeline::Document d = ws->document();
+    d.input.phantom = pipeline::PhantomInput{"head", 160, 4.0};
+    d.view.renderer.id = "cpu-raycast";
+    ws->open_document(d, "open");
+    return ws;
+}
+
 } // namespace arbor::workstation::test_support
