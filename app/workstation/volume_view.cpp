@@ -79,7 +79,7 @@ void VolumeView::draw(Workstation &ws)
         // time makes a software OpenGL compile its shader (hundreds of ms on
         // llvmpipe), better at startup than while the first jobs run.
         // (The relation wheel's scaled, linearly filtered texture draws from
-        // the start too, with its placeholder.)
+        // the start too, with its one-pixel stand-in.)
         const uint8_t black[4] = {0, 0, 0, 255};
         texture_.upload(black, 1, 1, false);
     }
