@@ -59,6 +59,26 @@ std::size_t Series::frame_count() const
     return n;
 }
 
+// The series an image belongs to: its Series Instance UID, or without one,
+// what images of one series share (a non-image object stays alone).
+std::string series_key(const ImageRecord &r, const fs::path &file)
+{
+    if (!r.series_uid.empty())
+        return r.series_uid;
+    if (!r.is_image())
+        return "file:" + file.string();
+    std::string key = "no-uid|" + r.study_uid + "|" + r.series_number + "|" + r.frame_of_reference_uid + "|" +
+                      std::to_string(r.rows) + "x" + std::to_string(r.columns) + "|" + std::to_string(r.bits_allocated) +
+                      (r.is_signed ? "s" : "u") + std::to_string(r.samples_per_pixel) + "|";
+    if (!r.frames.empty() && r.frames.front().geometry.orientation)
+        for (const double c : *r.frames.front().geometry.orientation) {
+            char buf[16];
+            std::snprintf(buf, sizeof buf, "%.3f,", c); // a tilt of < 0.06 degrees is the same plane
+            key += buf;
+        }
+    return key;
+}
+
 FolderScan scan_dicom(const fs::path &path, const ScanProgress &progress)
 {
     std::error_code ec;
@@ -81,9 +101,11 @@ FolderScan scan_dicom(const fs::path &path, const ScanProgress &progress)
         }
         try {
             ImageRecord r = read_image_record(file);
-            const std::string key = r.series_uid.empty() ? "file:" + file.string() : r.series_uid;
+            const std::string key = series_key(r, file);
             Series &s = by_uid[key];
             s.uid = r.series_uid;
+            if (key.rfind("no-uid|", 0) == 0)
+                ++s.grouped;
             s.images.push_back(std::move(r));
         } catch (const std::runtime_error &e) {
             scan.unreadable.push_back({file, e.what()});

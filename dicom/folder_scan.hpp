@@ -20,7 +20,12 @@ struct SkippedFile {
 };
 
 struct Series {
-    std::string uid; // Series Instance UID ("" when the files have none)
+    // Series Instance UID; "" when the files have none.  Some anonymisers
+    // and test exports drop it (a type-1 attribute): such images are grouped
+    // by study, series number, frame of reference, orientation, size and
+    // pixel format instead (`grouped` then counts them).
+    std::string uid;
+    std::size_t grouped = 0;
     std::vector<ImageRecord> images; // in path order
 
     const ImageRecord &first() const { return images.front(); }

@@ -344,6 +344,7 @@ ImageRecord read_image_record(const fs::path &path)
         {&ImageRecord::sop_instance_uid, DCM_SOPInstanceUID},
         {&ImageRecord::study_uid, DCM_StudyInstanceUID},
         {&ImageRecord::series_uid, DCM_SeriesInstanceUID},
+        {&ImageRecord::frame_of_reference_uid, DCM_FrameOfReferenceUID},
         {&ImageRecord::patient_name, DCM_PatientName},
         {&ImageRecord::patient_id, DCM_PatientID},
         {&ImageRecord::study_date, DCM_StudyDate},

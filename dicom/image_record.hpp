@@ -46,6 +46,7 @@ struct ImageRecord {
     std::string sop_instance_uid;
     std::string study_uid;
     std::string series_uid;
+    std::string frame_of_reference_uid;
     std::string patient_name;
     std::string patient_id;
     std::string study_date;

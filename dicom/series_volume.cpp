@@ -134,6 +134,10 @@ void with_voxel_type(arbor_voxel_type t, F &&f)
 SeriesVolume::SeriesVolume(const Series &series, const StackPolicy &policy)
 {
     name_ = "series " + (series.uid.empty() ? series.first().path.filename().string() : series.uid);
+    if (series.grouped > 1)
+        notes_.push_back("no Series Instance UID in " + std::to_string(series.grouped) +
+                         " files: read as one series because they share study, series number, frame of reference, "
+                         "orientation, size and pixel format");
     try {
         select_images(series);
         check_consistency();

@@ -19,6 +19,13 @@ std::string date_text(const std::string &d)
     return d.size() == 8 ? d.substr(0, 4) + "-" + d.substr(4, 2) + "-" + d.substr(6, 2) : d;
 }
 
+// How the importer's "series" parameter names the series at `row` of the
+// scan: its UID, or its 1-based row when it has none (an anonymised export).
+std::string selector(const dicom::Series &series, std::size_t row)
+{
+    return series.uid.empty() ? std::to_string(row + 1) : series.uid;
+}
+
 } // namespace
 
 DicomBrowser::~DicomBrowser() { cancel(); }
@@ -74,10 +81,12 @@ void DicomBrowser::draw(Workstation &ws)
         pending_ = {};
         if (result_ && open_single_) {
             const dicom::SeriesSummary *only = nullptr;
+            std::size_t only_row = 0;
             int readable = 0;
-            for (const auto &s : result_->series)
-                if (s.layout) {
-                    only = &s;
+            for (std::size_t i = 0; i < result_->series.size(); ++i)
+                if (result_->series[i].layout) {
+                    only = &result_->series[i];
+                    only_row = i;
                     ++readable;
                 }
             if (readable == 1) {
@@ -85,7 +94,7 @@ void DicomBrowser::draw(Workstation &ws)
                     pipeline::Document d = ws.document();
                     d.input = {};
                     d.input.path = path_;
-                    d.input.importer.params["series"] = only->series->uid;
+                    d.input.importer.params["series"] = selector(*only->series, only_row);
                     ws.open_document(d, "open " + fs::path(path_).filename().string());
                     shown_ = false;
                 } catch (const std::exception &e) {
@@ -139,7 +148,7 @@ void DicomBrowser::draw(Workstation &ws)
                         pipeline::Document d = ws.document();
                         d.input = {};
                         d.input.path = path_;
-                        d.input.importer.params["series"] = s.series->uid;
+                        d.input.importer.params["series"] = selector(*s.series, i);
                         ws.open_document(d, "open series " + r.series_number + " of " + fs::path(path_).filename().string());
                         shown_ = false;
                     } catch (const std::exception &e) {

@@ -319,6 +319,29 @@ class DicomProblems(unittest.TestCase):
         full = np.stack([d.pixel_array for d in series]).astype(float)
         np.testing.assert_allclose(voxels, full, atol=0.5)  # linear content: interpolation is exact
 
+    def test_a_real_series_without_series_uid_reads_as_one(self):
+        # Anonymisers and test exports drop Series Instance UID (type 1): the
+        # real MR series with it removed from every file, beside a second,
+        # synthetic series that lacks it too (another size and series number).
+        real = read_folder(MR_TUMOR)
+        synthetic = small_series()
+        for d in real + synthetic:
+            del d.SeriesInstanceUID
+        for d in synthetic:
+            d.SeriesNumber = 77
+        folder = write_series(real + synthetic, SCRATCH / "no_series_uid")
+        listing = json.loads(arbor("dicom", "ls", folder, "--json")[1])
+        frames = sorted((s["frames"], s["dims"]) for s in listing["series"])
+        self.assertEqual(frames, [(12, [64, 64, 12]), (120, [512, 512, 120])], "two series, not one per file")
+        for s in listing["series"]:
+            self.assertEqual(s["series_uid"], "")
+            self.assertTrue(any("no Series Instance UID" in n for n in s["notes"]), s["notes"])
+        row = 1 + [s["frames"] for s in listing["series"]].index(120)
+        fields, voxels, err = convert(folder, "no_series_uid", "--series", row)
+        self.assertIn("no Series Instance UID in 120 files", err)
+        _, original, _ = convert(MR_TUMOR, "mr_tumor_with_uid")
+        np.testing.assert_array_equal(voxels, original)
+
     def test_localizer_is_left_out_and_mixed_sizes_are_refused(self):
         series = small_series()
         scout = copy.deepcopy(series[0])
