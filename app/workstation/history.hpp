@@ -37,9 +37,8 @@ public:
     // the document before or after it.
     std::string undo();
     std::string redo();
-    // The steps' names, oldest first, and which one is current.
+    // The steps' names, oldest first.
     std::vector<std::string> names() const;
-    std::size_t position() const { return position_; }
 
 private:
     struct Step {

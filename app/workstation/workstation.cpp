@@ -562,12 +562,4 @@ std::vector<double> Workstation::visibility_shares() const
     return out;
 }
 
-std::optional<SliceGeometry> Workstation::slice_geometry_of(SliceOrientation o) const
-{
-    const auto filtered = pipeline_.latest<Stage::Filter>();
-    if (!filtered)
-        return std::nullopt;
-    return slice_geometry(filtered->volume->geometry(), o);
-}
-
 } // namespace arbor::workstation

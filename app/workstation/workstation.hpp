@@ -12,7 +12,6 @@
 #pragma once
 
 #include "history.hpp"
-#include "slice_geometry.hpp"
 #include "window_level.hpp"
 
 #include "pipeline/pipeline.hpp"
@@ -148,8 +147,6 @@ public:
     // renderer does not measure it).
     std::vector<double> visibility_shares() const;
 
-    // The slice views' geometry (of the filtered volume; nullopt without one).
-    std::optional<SliceGeometry> slice_geometry_of(SliceOrientation o) const;
 
 private:
     pipeline::Document for_pipeline(pipeline::Document d) const;
