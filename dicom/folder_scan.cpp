@@ -27,6 +27,13 @@ std::vector<fs::path> files_under(const fs::path &root)
     for (; it != fs::recursive_directory_iterator(); it.increment(ec)) {
         if (ec)
             break;
+        // Hidden names are not scans: .DS_Store, editors' files, and the
+        // manifest and half-received instances of a PACS retrieve.
+        if (it->path().filename().string().rfind('.', 0) == 0) {
+            if (it->is_directory(ec))
+                it.disable_recursion_pending();
+            continue;
+        }
         if (it->is_regular_file(ec))
             files.push_back(it->path());
     }

@@ -1,5 +1,7 @@
 #include "command_pipeline.hpp"
 
+#include "pacs_fetch.hpp"
+
 #include "pipeline/tree_cache.hpp"
 
 namespace arbor::cli {
@@ -11,6 +13,7 @@ pipeline::PipelineOptions options_for(Context &context, bool use_cache)
     pipeline::PipelineOptions o;
     o.max_volume_bytes = context.max_volume_bytes;
     o.progress = &context.progress;
+    o.fetch_input = fetch_pacs_input;
     if (use_cache) {
         try {
             o.tree_cache_folder = pipeline::TreeCache::default_folder();

@@ -4,6 +4,7 @@
 // if a person did them (workstation/script.hpp); --frame-log writes a line
 // per UI frame.
 #include "commands.hpp"
+#include "pacs_fetch.hpp"
 
 #include "pipeline/tree_cache.hpp"
 #include "workstation/workstation.hpp"
@@ -35,6 +36,7 @@ int run_view(Context &context, const ViewArgs &a)
     prctl(PR_SET_THP_DISABLE, 1, 0, 0, 0);
     pipeline::PipelineOptions o;
     o.max_volume_bytes = context.max_volume_bytes;
+    o.fetch_input = fetch_pacs_input;
     if (!a.no_cache) {
         try {
             o.tree_cache_folder = pipeline::TreeCache::default_folder();

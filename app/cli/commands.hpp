@@ -21,5 +21,6 @@ void add_run_command(CLI::App &app, Context &context);
 void add_denoise_study_command(CLI::App &app, Context &context);
 void add_dicom_command(CLI::App &app, Context &context);
 void add_view_command(CLI::App &app, Context &context);
+void add_pacs_command(CLI::App &app, Context &context);
 
 } // namespace arbor::cli

@@ -47,6 +47,7 @@ int main(int argc, char **argv)
 
     cli::add_info_command(app, context);
     cli::add_dicom_command(app, context);
+    cli::add_pacs_command(app, context);
     cli::add_phantom_command(app, context);
     cli::add_convert_command(app, context);
     cli::add_tree_command(app, context);

@@ -1,6 +1,8 @@
 #include "document.hpp"
+
 #include "stage_results.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -16,6 +18,17 @@ Document default_document()
     d.appearance.legend.id = "neighbour";
     d.view.renderer.id = "auto"; // PluginCatalog::renderer_choice
     return d;
+}
+
+bool is_input_uri(const std::string &text)
+{
+    const std::size_t colon = text.find("://");
+    if (colon == std::string::npos || colon == 0)
+        return false;
+    for (std::size_t i = 0; i < colon; ++i)
+        if (!(std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '+' || text[i] == '-' || text[i] == '.'))
+            return false;
+    return std::isalpha(static_cast<unsigned char>(text[0])) != 0;
 }
 
 PluginSetting parse_plugin_spec(const std::string &spec, const std::string &what)

@@ -51,7 +51,9 @@ struct PhantomInput {
 };
 
 struct InputChoice {
-    std::filesystem::path path;          // a volume file, a DICOM file or folder
+    // A volume file, a DICOM file or folder, or a URI such as
+    // pacs://NODE/SERIES_UID that PipelineOptions::fetch_input resolves.
+    std::filesystem::path path;
     std::optional<PhantomInput> phantom; // instead of a path
     // Empty id: chosen by probing the file (its params still apply, e.g.
     // "series" for a DICOM folder).
@@ -60,6 +62,10 @@ struct InputChoice {
     bool empty() const { return path.empty() && !phantom; }
     bool operator==(const InputChoice &) const = default;
 };
+
+// "scheme://...": an input the pipeline fetches, kept as written (not a path
+// to make absolute or relative).
+bool is_input_uri(const std::string &text);
 
 // Where the branch hierarchy is cut: the N most important branches (root
 // included), those whose importance exceeds a threshold, or neither: the

@@ -30,6 +30,8 @@
 #include <array>
 #include <atomic>
 #include <filesystem>
+#include <functional>
+#include <stop_token>
 #include <list>
 #include <memory>
 #include <mutex>
@@ -50,6 +52,12 @@ struct PipelineOptions {
     // Added to the nice value of every job's thread (core/thread_priority.hpp):
     // the workstation's UI stays responsive while jobs use every core.
     int worker_nice = 0;
+    // Inputs named by a URI ("pacs://NODE/SERIES"): turns one into a local
+    // file or folder, reporting to the job and polling the token.  The
+    // front that knows the scheme sets it (the CLI and the workstation:
+    // dicom/pacs_input.hpp); without it such an input is an error.
+    std::function<std::filesystem::path(const std::string &uri, ProgressSink &progress, std::stop_token stop)>
+        fetch_input;
 };
 
 class Pipeline {

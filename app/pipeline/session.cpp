@@ -24,6 +24,8 @@ std::string stored_path(const fs::path &p, const fs::path &folder)
 {
     if (p.empty())
         return {};
+    if (is_input_uri(p.string()))
+        return p.string(); // pacs://NODE/SERIES: the same wherever the session is
     std::error_code ec;
     const fs::path absolute = fs::weakly_canonical(fs::absolute(p, ec), ec);
     const fs::path base = fs::weakly_canonical(fs::absolute(folder.empty() ? fs::path(".") : folder, ec), ec);
@@ -122,7 +124,7 @@ public:
     fs::path path(const json &j, const std::string &where) const
     {
         const fs::path p = text(j, where);
-        return p.is_absolute() || p.empty() ? p : (folder_ / p).lexically_normal();
+        return p.is_absolute() || p.empty() || is_input_uri(p.string()) ? p : (folder_ / p).lexically_normal();
     }
 
     // A plugin of `kind` as saved: installed, every value within its domain.
@@ -332,7 +334,7 @@ SessionRead parse_session(const std::string &text, const fs::path &folder, const
     } else {
         const std::string saved = r.text(r.member(input, "path", "input"), "input.path");
         d.input.path = r.path(input.at("path"), "input.path");
-        if (require_input && !fs::exists(d.input.path))
+        if (require_input && !is_input_uri(d.input.path.string()) && !fs::exists(d.input.path))
             r.fail("the input " + d.input.path.string() + " does not exist" +
                    (saved != d.input.path.string() ? " (saved as " + saved + ")" : ""));
         d.input.importer = r.optional_plugin(input, "importer", ARBOR_KIND_IMPORTER, "input");

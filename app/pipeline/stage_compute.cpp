@@ -52,9 +52,15 @@ std::shared_ptr<const void> import(StageContext &c)
     } else {
         if (in.path.empty())
             throw std::invalid_argument("no input: give a volume file or folder, or --phantom head");
+        std::filesystem::path local = in.path;
+        if (is_input_uri(in.path.string())) {
+            if (!c.options.fetch_input)
+                throw std::invalid_argument(in.path.string() + ": this front cannot fetch inputs by URI");
+            local = c.options.fetch_input(in.path.string(), c.job, c.stop());
+        }
         PluginSetting setting = in.importer;
         const bool probed = setting.id.empty();
-        setting.id = probed ? choose_importer(c.catalog.registry(), in.path)
+        setting.id = probed ? choose_importer(c.catalog.registry(), local)
                             : c.catalog.find(ARBOR_KIND_IMPORTER, setting.id);
         if (probed) { // the file chose the importer: say so when it lacks a parameter given
             const auto descriptions = c.catalog.descriptions(setting.id);
@@ -67,7 +73,7 @@ std::shared_ptr<const void> import(StageContext &c)
         PluginSlot::Lease importer = c.plugins.lease(setting, &c.job);
         require_parameters(*importer, setting);
         r->volume = std::make_shared<const Volume>(
-            import_volume(*importer, in.path, &c.job, c.options.max_volume_bytes, c.stop()));
+            import_volume(*importer, local, &c.job, c.options.max_volume_bytes, c.stop()));
         r->source = in.path.string();
         r->importer = {setting.id, importer->descriptor().version, read_params(*importer)};
     }

@@ -146,7 +146,7 @@ bool Workstation::redo()
 
 void Workstation::open(const fs::path &path)
 {
-    if (!fs::exists(path))
+    if (!pipeline::is_input_uri(path.string()) && !fs::exists(path)) // pacs:// is fetched by the import job
         throw std::invalid_argument(path.string() + ": no such file or folder");
     if (is_session_file(path)) {
         pipeline::SessionRead read = pipeline::read_session(path, catalog());
