@@ -93,6 +93,10 @@ std::string describe_retrieve_status(const PacsNode &node, const char *what, con
     case 0x0000: meaning = "success reported"; break;
     default: meaning = (n.status & 0xF000) == 0xC000 ? "the archive could not process the request" : "failure";
     }
+    if (std::string(what) == "C-MOVE" && (n.status & 0xF000) == 0xC000)
+        meaning += "; for C-MOVE this is often the archive failing to connect to " + node.our_aet +
+                   ": check the address and port it has for that AE title (we listen on " +
+                   std::to_string(node.our_port) + ")";
     std::string text = node.describe() + ": " + what + " ended with status " + code + " (" + meaning + ")";
     if (n.failed > 0)
         text += "; the archive failed to send " + std::to_string(n.failed) + " image(s)";

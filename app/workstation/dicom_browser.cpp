@@ -44,6 +44,7 @@ void DicomBrowser::scan(const fs::path &folder, bool open_single)
     cancel();
     std::snprintf(path_, sizeof path_, "%s", folder.c_str());
     shown_ = true;
+    select_pacs_ = 0;
     open_single_ = open_single;
     result_.reset();
     error_.clear();
@@ -103,11 +104,37 @@ void DicomBrowser::draw(Workstation &ws)
             }
         }
     }
+    pacs_.poll();
     ImGui::SetNextWindowSize({980, 420}, ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("DICOM browser", &shown_)) {
         ImGui::End();
         return;
     }
+    if (ImGui::BeginTabBar("sources")) {
+        if (ImGui::BeginTabItem("Folder", nullptr, select_pacs_ == 0 ? ImGuiTabItemFlags_SetSelected : 0)) {
+            draw_folder(ws);
+            ImGui::EndTabItem();
+        }
+        if (ImGui::BeginTabItem("PACS", nullptr, select_pacs_ == 1 ? ImGuiTabItemFlags_SetSelected : 0)) {
+            pacs_.draw(ws);
+            ImGui::EndTabItem();
+        }
+        select_pacs_ = -1;
+        ImGui::EndTabBar();
+    }
+    ImGui::End();
+    if (pacs_.take_opened())
+        shown_ = false;
+}
+
+void DicomBrowser::show_pacs()
+{
+    shown_ = true;
+    select_pacs_ = 1;
+}
+
+void DicomBrowser::draw_folder(Workstation &ws)
+{
     ImGui::SetNextItemWidth(600);
     const bool enter = ImGui::InputText("folder", path_, sizeof path_, ImGuiInputTextFlags_EnterReturnsTrue);
     ImGui::SameLine();
@@ -184,7 +211,6 @@ void DicomBrowser::draw(Workstation &ws)
             ImGui::EndTable();
         }
     }
-    ImGui::End();
 }
 
 } // namespace arbor::workstation

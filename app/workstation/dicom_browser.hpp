@@ -3,8 +3,11 @@
 // reading each as a volume would give and would correct (or why it cannot),
 // and Open per series.  A folder dropped on the window or opened from the
 // File menu comes here; one holding a single readable series opens at once,
-// as Slicer's DICOM module loads a lone series.
+// as Slicer's DICOM module loads a lone series.  Its PACS tab searches and
+// opens series from an archive (pacs_browser.hpp).
 #pragma once
+
+#include "pacs_browser.hpp"
 
 #include "dicom/series_summary.hpp"
 
@@ -28,6 +31,10 @@ public:
     bool &shown() { return shown_; }
     bool scanning() const { return pending_.valid(); }
     void draw(Workstation &workstation);
+    // Shows the browser on its PACS tab.
+    void show_pacs();
+    PacsBrowser &pacs() { return pacs_; }
+    const PacsBrowser &pacs() const { return pacs_; }
 
 private:
     struct Scan {
@@ -35,8 +42,11 @@ private:
         std::vector<dicom::SeriesSummary> series;
     };
     void cancel();
+    void draw_folder(Workstation &workstation);
 
     bool shown_ = false;
+    int select_pacs_ = -1; // the tab to select next frame: 0 folder, 1 PACS
+    PacsBrowser pacs_;
     char path_[1024] = "";
     bool open_single_ = false;
     std::future<std::shared_ptr<Scan>> pending_;

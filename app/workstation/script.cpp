@@ -22,6 +22,7 @@ const std::map<std::string, std::pair<std::size_t, std::size_t>> &commands()
         {"branch-opacity", {2, 2}}, {"reset-styles", {0, 0}},          {"undo", {0, 0}},        {"redo", {0, 0}},
         {"screenshot", {1, 1}},    {"screenshot-window", {1, 1}}, {"save-session", {1, 1}},
         {"export-labels", {1, 1}}, {"export-tf", {1, 1}},   {"quit", {0, 0}},
+        {"pacs-search", {1, 5}},   {"pacs-open", {1, 1}},
     };
     return table;
 }
@@ -177,7 +178,14 @@ void ScriptRunner::run(const ScriptLine &line, Workstation &ws, ScriptWindow &wi
         ws.export_labels(a[0]);
     else if (c == "export-tf")
         ws.export_transfer_functions(a[0]);
-    else if (c == "quit")
+    else if (c == "pacs-search")
+        window.pacs_search(a[0], {a.begin() + 1, a.end()});
+    else if (c == "pacs-open") {
+        const double row = number(a[0], "pacs-open");
+        if (row < 1 || row != std::floor(row))
+            throw std::invalid_argument("'" + a[0] + "' is not a row (1, 2, ...)");
+        window.pacs_open(static_cast<std::size_t>(row) - 1);
+    } else if (c == "quit")
         window.quit();
 }
 

@@ -20,6 +20,10 @@
 //   screenshot-window PATH     the whole window (PNG)
 //   save-session PATH
 //   export-labels PATH | export-tf PATH
+//   pacs-search NODE [patient=P] [study-date=D] [modality=M] [accession=A]
+//                              the DICOM browser's PACS tab searches series
+//                              (`wait idle` waits for the answer)
+//   pacs-open ROW              opens row ROW (1-based) of that search
 //   quit
 //
 // Blank lines and lines starting with '#' are skipped.  The whole script is
@@ -59,8 +63,12 @@ public:
     // Write the whole window (as drawn this frame) to a PNG.
     virtual void capture_window(const std::filesystem::path &path) = 0;
     virtual void quit() = 0;
-    // Work of the window's own that `wait idle` waits for (a DICOM folder scan).
+    // Work of the window's own that `wait idle` waits for (a DICOM folder
+    // scan, a PACS search).
     virtual bool busy() const { return false; }
+    // The PACS tab: search (filters "key=value"), open a row of the result.
+    virtual void pacs_search(const std::string &node, const std::vector<std::string> &filters) = 0;
+    virtual void pacs_open(std::size_t row) = 0;
 };
 
 class ScriptRunner {

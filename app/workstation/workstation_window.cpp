@@ -77,7 +77,36 @@ public:
 
     void capture_window(const fs::path &path) override { capture_ = path; }
     void quit() override { quit_ = true; }
-    bool busy() const override { return dicom_.scanning(); }
+    bool busy() const override { return dicom_.scanning() || dicom_.pacs().searching(); }
+    void pacs_search(const std::string &node, const std::vector<std::string> &filters) override
+    {
+        dicom::PacsQuery q;
+        for (const std::string &f : filters) {
+            const auto eq = f.find('=');
+            const std::string key = f.substr(0, eq), value = eq == std::string::npos ? "" : f.substr(eq + 1);
+            if (eq == std::string::npos)
+                throw std::invalid_argument("'" + f + "': filters are KEY=VALUE");
+            if (key == "patient")
+                q.patient = value;
+            else if (key == "study-date")
+                q.study_date = value;
+            else if (key == "modality")
+                q.modality = value;
+            else if (key == "accession")
+                q.accession = value;
+            else
+                throw std::invalid_argument("unknown filter '" + key + "' (patient, study-date, modality, accession)");
+        }
+        dicom_.show_pacs();
+        dicom_.pacs().search(node, q);
+    }
+    void pacs_open(std::size_t row) override
+    {
+        dicom_.pacs().poll();
+        if (!dicom_.pacs().error().empty())
+            throw std::runtime_error(dicom_.pacs().error());
+        dicom_.pacs().open(row, ws_);
+    }
 
 private:
     void frame();

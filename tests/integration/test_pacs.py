@@ -16,6 +16,7 @@ import pathlib
 import shutil
 import socket
 import stat
+import subprocess
 import threading
 import time
 import unittest
@@ -23,6 +24,7 @@ import urllib.request
 
 import numpy as np
 import pydicom
+from PIL import Image
 
 from orthanc_fixture import Orthanc, free_port
 from test_cli import DATA, SCRATCH, arbor
@@ -394,6 +396,50 @@ class Pacs(unittest.TestCase):
         status, _, err = self.pacs("info", "pacs://down", check=False, env=env)
         self.assertEqual(status, 1)
         self.assertIn("pacs://NODE/SERIES_UID", err)
+
+
+@unittest.skipUnless(shutil.which("xvfb-run"), "needs xvfb-run")
+class PacsInTheWorkstation(unittest.TestCase):
+    """The DICOM browser's PACS tab, driven by `arbor view --script` in a real
+    window: search the archive, open a series, let it compute, save."""
+
+    def test_search_open_and_save(self):
+        out = SCRATCH / "pacs-view"
+        shutil.rmtree(out, ignore_errors=True)
+        out.mkdir(parents=True)
+        with Orthanc({"ARBOR": free_port()}) as orthanc:
+            orthanc.upload(sorted(MR_TUMOR.glob("*.dcm")))
+            orthanc.upload([J2K])
+            node = f"{Orthanc.AET}@127.0.0.1:{orthanc.dicom_port}"
+            script = out / "steps.txt"
+            script.write_text(f"""\
+pacs-search {node} modality=MR
+wait idle 60
+pacs-open 1
+wait idle 600
+screenshot {out}/opened.png
+screenshot-window {out}/window.png
+save-session {out}/session.json
+pacs-search {node} modality=XA
+wait idle 60
+pacs-open 1
+""")
+            env = dict(os.environ, HOME=str(out / "home"), ARBOR_STATE_DIR=str(out / "state"),
+                       ARBOR_PACS_CACHE_DIR=str(out / "cache"))
+            p = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", os.environ["ARBOR"], "view",
+                                "--no-cache", "--no-recovery", "--script", str(script)],
+                               capture_output=True, text=True, env=env, timeout=900)
+        # The last step opens row 1 of a search that found nothing: the script stops there, naming it.
+        self.assertNotEqual(p.returncode, 0)
+        self.assertIn("steps.txt:10: pacs-open: the search found 0 series", p.stderr)
+        mr = series_uid(MR_TUMOR)
+        session = json.loads((out / "session.json").read_text())
+        self.assertEqual(session["input"]["path"], f"pacs://{node}/{mr}")
+        folder = out / "cache" / node.replace(":", "_") / mr
+        self.assertTrue(retrieval_complete(folder))
+        self.assertEqual(sop_uids(folder), sop_uids(MR_TUMOR))
+        picture = np.asarray(Image.open(out / "opened.png").convert("L"), dtype=float)
+        self.assertGreater(picture.std(), 5, "the 3D view shows the retrieved MR")
 
 
 def retrieval_complete(folder):
