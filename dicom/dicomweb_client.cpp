@@ -4,6 +4,7 @@
 // HTTP basic or bearer authentication.
 #include "dicom/multipart_stream.hpp"
 #include "dicom/pacs_client.hpp"
+#include "dicom/value_text.hpp"
 
 #include <curl/curl.h>
 #include <nlohmann/json.hpp>
@@ -51,19 +52,7 @@ std::string value_of(const json &object, const char *tag)
 
 int count_of(const json &object, const char *tag)
 {
-    const std::string s = value_of(object, tag);
-    if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos)
-        return -1;
-    return std::atoi(s.c_str());
-}
-
-std::string person_name(std::string s)
-{
-    for (char &c : s)
-        if (c == '^')
-            c = ' ';
-    s.erase(s.find_last_not_of(' ') + 1);
-    return s;
+    return count_value(value_of(object, tag));
 }
 
 struct Transfer {
@@ -127,7 +116,7 @@ public:
         std::vector<StudyRow> rows;
         for (const json &o : search(query)) {
             StudyRow r;
-            r.patient_name = person_name(value_of(o, "00100010"));
+            r.patient_name = display_person_name(value_of(o, "00100010"));
             r.patient_id = value_of(o, "00100020");
             r.study_uid = value_of(o, "0020000D");
             r.study_date = value_of(o, "00080020");

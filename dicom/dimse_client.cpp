@@ -6,6 +6,7 @@
 #include "dicom/dimse_contexts.hpp"
 #include "dicom/dimse_store_scp.hpp"
 #include "dicom/pacs_client.hpp"
+#include "dicom/value_text.hpp"
 
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
@@ -40,20 +41,7 @@ std::string text_of(DcmItem &item, const DcmTagKey &tag)
 
 int count_of(DcmItem &item, const DcmTagKey &tag)
 {
-    const std::string s = text_of(item, tag);
-    if (s.empty() || s.find_first_not_of("0123456789 ") != std::string::npos)
-        return -1;
-    return std::atoi(s.c_str());
-}
-
-// DICOM wants Patient's Name components separated by ^; show them with spaces.
-std::string person_name(std::string s)
-{
-    for (char &c : s)
-        if (c == '^')
-            c = ' ';
-    s.erase(s.find_last_not_of(' ') + 1);
-    return s;
+    return count_value(text_of(item, tag));
 }
 
 class Association final : public DcmSCU {
@@ -378,7 +366,7 @@ private:
         put(keys, DCM_NumberOfStudyRelatedInstances, "");
         return find_rows<StudyRow>(a, keys, node_.describe(), [](DcmDataset &d) {
             StudyRow r;
-            r.patient_name = person_name(text_of(d, DCM_PatientName));
+            r.patient_name = display_person_name(text_of(d, DCM_PatientName));
             r.patient_id = text_of(d, DCM_PatientID);
             r.study_uid = text_of(d, DCM_StudyInstanceUID);
             r.study_date = text_of(d, DCM_StudyDate);

@@ -2,9 +2,11 @@
 // reading each series as a volume would give (size, spacing) and what it
 // would correct or refuse, plus the files that could not be read.
 #include "commands.hpp"
+#include "table_text.hpp"
 
 #include "dicom/folder_scan.hpp"
 #include "dicom/series_summary.hpp"
+#include "dicom/value_text.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -27,21 +29,6 @@ std::string fixed(double v, int digits)
 }
 
 // At most `width` bytes, never cutting a UTF-8 character in half.
-std::string clip(const std::string &s, std::size_t width)
-{
-    if (s.size() <= width)
-        return s;
-    std::size_t end = width - 1;
-    while (end > 0 && (static_cast<unsigned char>(s[end]) & 0xC0) == 0x80)
-        --end;
-    return s.substr(0, end) + "~";
-}
-
-std::string date_text(const std::string &d)
-{
-    return d.size() == 8 ? d.substr(0, 4) + "-" + d.substr(4, 2) + "-" + d.substr(6, 2) : d;
-}
-
 nlohmann::json summary_json(const SeriesSummary &s, std::size_t row)
 {
     const dicom::ImageRecord &r = s.series->first();
@@ -86,7 +73,7 @@ void print_table(const dicom::FolderScan &scan, const std::vector<SeriesSummary>
         const SeriesSummary &s = rows[i];
         const dicom::ImageRecord &r = s.series->first();
         const std::string patient = r.patient_name.empty() ? r.patient_id : r.patient_name;
-        const std::string study = date_text(r.study_date) + (r.study_description.empty() ? "" : " " + r.study_description);
+        const std::string study = dicom::display_date(r.study_date) + (r.study_description.empty() ? "" : " " + r.study_description);
         std::string size = "-", spacing = "-";
         if (s.layout) {
             const auto &l = *s.layout;

@@ -6,9 +6,11 @@
 //   move NODE --series   retrieve a series by C-MOVE to our storage SCP
 // NODE: a configured name, AET@host:port, or a DICOMweb URL.
 #include "commands.hpp"
+#include "table_text.hpp"
 
 #include "dicom/pacs_input.hpp"
 #include "dicom/series_retrieval.hpp"
+#include "dicom/value_text.hpp"
 
 #include "core/stopwatch.hpp"
 
@@ -55,21 +57,6 @@ struct NodeFlags {
 
     dicom::PacsOptions options(Context &context) const { return {timeout_s, context.stop.get_token()}; }
 };
-
-std::string date_text(const std::string &d)
-{
-    return d.size() == 8 ? d.substr(0, 4) + "-" + d.substr(4, 2) + "-" + d.substr(6, 2) : d;
-}
-
-std::string clip(const std::string &s, std::size_t width)
-{
-    if (s.size() <= width)
-        return s;
-    std::size_t end = width - 1;
-    while (end > 0 && (static_cast<unsigned char>(s[end]) & 0xC0) == 0x80)
-        --end;
-    return s.substr(0, end) + "~";
-}
 
 std::string count_text(int n)
 {
@@ -227,7 +214,7 @@ void add_find_command(CLI::App *pacs, Context &context)
                         "SERIES", "IMAGES");
             for (const auto &r : rows) {
                 std::printf("%-24s %-12s %-10s %-28s %-8s %6s %6s\n", clip(r.patient_name, 24).c_str(),
-                            clip(r.patient_id, 12).c_str(), date_text(r.study_date).c_str(),
+                            clip(r.patient_id, 12).c_str(), dicom::display_date(r.study_date).c_str(),
                             clip(r.study_description, 28).c_str(), clip(r.modalities, 8).c_str(),
                             count_text(r.series_count).c_str(), count_text(r.image_count).c_str());
                 std::printf("    study UID %s\n", r.study_uid.c_str());
@@ -252,7 +239,7 @@ void add_find_command(CLI::App *pacs, Context &context)
                     "DESCRIPTION", "IMAGES");
         for (const auto &r : rows) {
             std::printf("%-22s %-10s %-22s %-6s %-4s %-24s %6s\n", clip(r.patient_name, 22).c_str(),
-                        date_text(r.study_date).c_str(), clip(r.study_description, 22).c_str(),
+                        dicom::display_date(r.study_date).c_str(), clip(r.study_description, 22).c_str(),
                         clip(r.series_number, 6).c_str(), clip(r.modality, 4).c_str(),
                         clip(r.description, 24).c_str(), count_text(r.image_count).c_str());
             std::printf("    series UID %s\n", r.series_uid.c_str());

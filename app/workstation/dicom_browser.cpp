@@ -1,5 +1,6 @@
 #include "dicom_browser.hpp"
 
+#include "series_cells.hpp"
 #include "workstation.hpp"
 
 #include <imgui.h>
@@ -13,11 +14,6 @@ namespace fs = std::filesystem;
 namespace {
 
 struct ScanCancelled {};
-
-std::string date_text(const std::string &d)
-{
-    return d.size() == 8 ? d.substr(0, 4) + "-" + d.substr(4, 2) + "-" + d.substr(6, 2) : d;
-}
 
 // How the importer's "series" parameter names the series at `row` of the
 // scan: its UID, or its 1-based row when it has none (an anonymised export).
@@ -156,8 +152,7 @@ void DicomBrowser::draw_folder(Workstation &ws)
                                       ImGuiTableFlags_BordersInnerV;
         if (ImGui::BeginTable("series", 8, flags)) {
             ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, 40);
-            for (const char *h : {"patient", "study", "series", "modality", "description"})
-                ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthStretch, 1.0f);
+            setup_series_columns();
             ImGui::TableSetupColumn("volume", ImGuiTableColumnFlags_WidthFixed, 210);
             ImGui::TableSetupColumn("reading", ImGuiTableColumnFlags_WidthStretch, 3.0f);
             ImGui::TableSetupScrollFreeze(0, 1);
@@ -184,16 +179,8 @@ void DicomBrowser::draw_folder(Workstation &ws)
                 }
                 if (!s.layout)
                     ImGui::EndDisabled();
-                ImGui::TableNextColumn();
-                ImGui::Text("%s %s", r.patient_name.c_str(), r.patient_id.c_str());
-                ImGui::TableNextColumn();
-                ImGui::Text("%s %s", date_text(r.study_date).c_str(), r.study_description.c_str());
-                ImGui::TableNextColumn();
-                ImGui::TextUnformatted(r.series_number.c_str());
-                ImGui::TableNextColumn();
-                ImGui::TextUnformatted(r.modality.c_str());
-                ImGui::TableNextColumn();
-                ImGui::TextUnformatted(r.series_description.c_str());
+                draw_series_cells({r.patient_name, r.patient_id, r.study_date, r.study_description, r.series_number,
+                                   r.modality, r.series_description});
                 ImGui::TableNextColumn();
                 if (s.layout)
                     ImGui::Text("%lldx%lldx%lld, %.2fx%.2fx%.2f mm", static_cast<long long>(s.layout->dims[0]),

@@ -1,5 +1,6 @@
 #include "pacs_browser.hpp"
 
+#include "series_cells.hpp"
 #include "workstation.hpp"
 
 #include <imgui.h>
@@ -8,15 +9,6 @@
 #include <stdexcept>
 
 namespace arbor::workstation {
-
-namespace {
-
-std::string date_text(const std::string &d)
-{
-    return d.size() == 8 ? d.substr(0, 4) + "-" + d.substr(4, 2) + "-" + d.substr(6, 2) : d;
-}
-
-} // namespace
 
 PacsBrowser::~PacsBrowser() { cancel(); }
 
@@ -139,8 +131,7 @@ void PacsBrowser::draw(Workstation &ws)
                                   ImGuiTableFlags_BordersInnerV;
     if (!rows_.empty() && ImGui::BeginTable("pacs-series", 7, flags)) {
         ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, 40);
-        for (const char *h : {"patient", "study", "series", "modality", "description"})
-            ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthStretch, 1.0f);
+        setup_series_columns();
         ImGui::TableSetupColumn("images", ImGuiTableColumnFlags_WidthFixed, 60);
         ImGui::TableSetupScrollFreeze(0, 1);
         ImGui::TableHeadersRow();
@@ -156,16 +147,8 @@ void PacsBrowser::draw(Workstation &ws)
                     error_ = e.what();
                 }
             }
-            ImGui::TableNextColumn();
-            ImGui::Text("%s %s", r.patient_name.c_str(), r.patient_id.c_str());
-            ImGui::TableNextColumn();
-            ImGui::Text("%s %s", date_text(r.study_date).c_str(), r.study_description.c_str());
-            ImGui::TableNextColumn();
-            ImGui::TextUnformatted(r.series_number.c_str());
-            ImGui::TableNextColumn();
-            ImGui::TextUnformatted(r.modality.c_str());
-            ImGui::TableNextColumn();
-            ImGui::TextUnformatted(r.description.c_str());
+            draw_series_cells(
+                {r.patient_name, r.patient_id, r.study_date, r.study_description, r.series_number, r.modality, r.description});
             if (ImGui::IsItemHovered())
                 ImGui::SetTooltip("%s", r.series_uid.c_str());
             ImGui::TableNextColumn();
