@@ -104,7 +104,15 @@ public:
                              node_.describe() + " ended the association during the " + what +
                                  ": it may not know our AE title " + node_.our_aet +
                                  " (archives answer only callers listed in their configuration)");
-        return PacsError(Kind::Failed, node_.describe() + ": the " + what + " failed (" + c.text() + ")");
+        std::string text = c.text(); // DCMTK's may span lines
+        for (char &ch : text)
+            if (ch == '\n' || ch == '\r')
+                ch = ' ';
+        for (const char *cut : {"TCP I/O Error", "Broken pipe", "Connection reset", "Socket closed"})
+            if (text.find(cut) != std::string::npos)
+                return PacsError(Kind::Failed,
+                                 "the connection to " + node_.describe() + " was lost during the " + what + " (" + text + ")");
+        return PacsError(Kind::Failed, node_.describe() + ": the " + what + " failed (" + text + ")");
     }
 
     // Sink and stop token of the current retrieve (C-GET stores arrive here).

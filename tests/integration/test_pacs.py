@@ -77,13 +77,13 @@ class SilentServer:
 
 
 class CuttingProxy:
-    """Forwards one HTTP exchange at a time to Orthanc and closes the
-    connection after `limit` bytes of the answer: a retrieve that fails half way."""
+    """A TCP proxy to a port of Orthanc that closes each connection once
+    `limit` bytes of the answer went through: a retrieve that fails half way
+    (DICOM association or HTTP alike)."""
 
     def __init__(self, target_port, limit):
         self.target_port, self.limit = target_port, limit
         self.sock = socket.socket()
-        self.sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
         self.sock.bind(("127.0.0.1", 0))
         self.sock.listen(8)
         self.port = self.sock.getsockname()[1]
@@ -95,30 +95,30 @@ class CuttingProxy:
                 client, _ = self.sock.accept()
             except OSError:
                 return
-            threading.Thread(target=self._pipe, args=(client,), daemon=True).start()
+            upstream = socket.create_connection(("127.0.0.1", self.target_port))
+            threading.Thread(target=self._copy, args=(client, upstream, None), daemon=True).start()
+            threading.Thread(target=self._copy, args=(upstream, client, self.limit), daemon=True).start()
 
-    def _pipe(self, client):
-        upstream = socket.create_connection(("127.0.0.1", self.target_port))
-        client.settimeout(2)
-        request = b""
-        while b"\r\n\r\n" not in request:
-            chunk = client.recv(65536)
-            if not chunk:
-                break
-            request += chunk
-        # One request per connection, so a cut answer is never reused.
-        request = request.replace(b"\r\n\r\n", b"\r\nConnection: close\r\n\r\n", 1)
-        upstream.sendall(request)
+    @staticmethod
+    def _copy(source, target, limit):
         sent = 0
-        while sent < self.limit:
-            chunk = upstream.recv(65536)
-            if not chunk:
-                break
-            chunk = chunk[: self.limit - sent]
-            client.sendall(chunk)
-            sent += len(chunk)
-        upstream.close()
-        client.close()
+        try:
+            while limit is None or sent < limit:
+                chunk = source.recv(65536)
+                if not chunk:
+                    break
+                if limit is not None:
+                    chunk = chunk[: limit - sent]
+                target.sendall(chunk)
+                sent += len(chunk)
+        except OSError:
+            pass
+        for s in (source, target):
+            try:
+                s.shutdown(socket.SHUT_RDWR)
+            except OSError:
+                pass
+            s.close()
 
     def close(self):
         self.sock.close()
@@ -180,6 +180,8 @@ class Pacs(unittest.TestCase):
         self.assertEqual([s["study_uid"] for s in dated], [ct[0]["study_uid"]])
         none = self.pacs("pacs", "find", self.node, "--level", "study", "--patient", "NOBODY*")[1]
         self.assertIn("no studies match", none)
+        for node in (self.node, self.web):
+            self.assertEqual(json.loads(self.pacs("pacs", "find", node, "--json", "--accession", "NO-SUCH-1")[1]), [])
 
     def test_find_series_over_dimse_and_dicomweb_agree(self):
         for node in (self.node, self.web):
@@ -318,27 +320,33 @@ class Pacs(unittest.TestCase):
             silent.close()
 
     def test_a_retrieve_cut_half_way_keeps_what_arrived_marked_incomplete(self):
-        proxy = CuttingProxy(self.orthanc.http_port, limit=20 << 20)  # of ~63 MB
+        dimse = CuttingProxy(self.orthanc.dicom_port, limit=20 << 20)  # of ~63 MB
+        web = CuttingProxy(self.orthanc.http_port, limit=20 << 20)
         try:
-            cut = f"http://127.0.0.1:{proxy.port}/dicom-web"
-            folder = self.out / "cut"
-            status, _, err = self.pacs("pacs", "get", cut, "--series", self.mr_series, "-o", folder, check=False)
-            self.assertEqual(status, 1)
-            manifest = json.loads((folder / ".arbor-retrieve.json").read_text())
-            self.assertEqual(manifest["state"], "incomplete")
-            arrived = sop_uids(folder)
-            self.assertGreater(len(arrived), 10)
-            self.assertLess(len(arrived), 120)
-            self.assertEqual(manifest["received"], len(arrived))
-            self.assertIn(f"The {len(arrived)} image(s) that arrived are in {folder}", err)
-            self.assertFalse((folder / ".incoming").exists(), "nothing half-written is left")
-            self.assertTrue(arrived <= sop_uids(MR_TUMOR))
-            # pacs:// does not take an incomplete retrieve for the series.
-            status, _, err = self.pacs("info", f"pacs://{cut}/{self.mr_series}", check=False)
-            self.assertEqual(status, 1)
-            self.assertIn("incomplete", err)
+            for node in (f"{Orthanc.AET}@127.0.0.1:{dimse.port}", f"http://127.0.0.1:{web.port}/dicom-web"):
+                with self.subTest(node=node):
+                    folder = self.out / f"cut-{'web' if node.startswith('http') else 'dimse'}"
+                    status, _, err = self.pacs("pacs", "get", node, "--series", self.mr_series, "-o", folder,
+                                               "--timeout", "5", check=False)
+                    self.assertEqual(status, 1)
+                    manifest = json.loads((folder / ".arbor-retrieve.json").read_text())
+                    self.assertEqual(manifest["state"], "incomplete")
+                    arrived = sop_uids(folder)
+                    self.assertGreater(len(arrived), 10)
+                    self.assertLess(len(arrived), 120)
+                    self.assertEqual(manifest["received"], len(arrived))
+                    self.assertIn(f"The {len(arrived)} image(s) that arrived are in {folder}", err)
+                    self.assertTrue("was lost during the C-GET" in err or "ended before its last part" in err, err)
+                    self.assertFalse((folder / ".incoming").exists(), "nothing half-written is left")
+                    self.assertTrue(arrived <= sop_uids(MR_TUMOR))
+                    # pacs:// does not take an incomplete retrieve for the series.
+                    status, _, err = self.pacs("info", f"pacs://{node}/{self.mr_series}", "--no-cache", check=False,
+                                               env={"ARBOR_PACS_CACHE_DIR": str(self.out / "cut-cache")})
+                    self.assertEqual(status, 1)
+                    self.assertIn("incomplete", err)
         finally:
-            proxy.close()
+            dimse.close()
+            web.close()
 
     # -- nodes and pacs:// --------------------------------------------------
 
@@ -372,6 +380,9 @@ class Pacs(unittest.TestCase):
         self.assertTrue(retrieval_complete(folder))
         self.assertEqual(sop_uids(folder), sop_uids(CT_HEAD))
         self.assertEqual(json.loads(session.read_text())["input"]["path"], uri)
+        self.pacs("run", "--session", session, "-o", self.out / "uri-again.png", "--no-cache", env=env)
+        first, again = (np.asarray(Image.open(self.out / n)) for n in ("uri.png", "uri-again.png"))
+        self.assertTrue(np.array_equal(first, again), "the session reopens the pacs:// input to the same image")
         # Once cached, the archive is not asked again: a stopped node still reads.
         j = json.loads(self.pacs("info", uri, "--json", env=env)[1])
         self.assertEqual(j["dims"][:2], [512, 512])
