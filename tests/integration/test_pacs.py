@@ -10,6 +10,8 @@ Failures are provoked for real: a wrong called AE title, an unknown caller,
 a stopped Orthanc, a wrong password, a server that accepts and never
 answers (timeouts), and an HTTP proxy that cuts a WADO-RS answer half way.
 """
+import base64
+import http.server
 import json
 import os
 import pathlib
@@ -122,6 +124,46 @@ class CuttingProxy:
 
     def close(self):
         self.sock.close()
+
+
+class BearerGateway:
+    """An HTTP gateway in front of Orthanc's DICOMweb that wants a bearer
+    token (as archives behind OAuth do) and passes requests on with
+    Orthanc's own basic credentials."""
+
+    def __init__(self, orthanc, token):
+        gateway = self
+
+        class Handler(http.server.BaseHTTPRequestHandler):
+            def do_GET(self):
+                if self.headers.get("Authorization") != f"Bearer {token}":
+                    self.send_response(401)
+                    self.send_header("WWW-Authenticate", "Bearer")
+                    self.send_header("Content-Length", "0")
+                    self.end_headers()
+                    return
+                request = urllib.request.Request(f"http://127.0.0.1:{orthanc.http_port}{self.path}")
+                request.add_header("Accept", self.headers.get("Accept", "*/*"))
+                request.add_header("Authorization", "Basic " + base64.b64encode(
+                    f"{Orthanc.USER}:{Orthanc.PASSWORD}".encode()).decode())
+                with urllib.request.urlopen(request, timeout=30) as answer:
+                    body = answer.read()
+                    self.send_response(answer.status)
+                    self.send_header("Content-Type", answer.headers["Content-Type"])
+                    self.send_header("Content-Length", str(len(body)))
+                    self.end_headers()
+                    self.wfile.write(body)
+
+            def log_message(self, *args):
+                pass
+
+        self.server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Handler)
+        self.port = self.server.server_address[1]
+        threading.Thread(target=self.server.serve_forever, daemon=True).start()
+
+    def close(self):
+        self.server.shutdown()
+        self.server.server_close()
 
 
 class Pacs(unittest.TestCase):
@@ -256,6 +298,24 @@ class Pacs(unittest.TestCase):
         self.assertEqual(sop_uids(folder), sop_uids(MR_TUMOR))
         self.same_volume(folder, MR_TUMOR, "web-mr")
         self.assert_no_secret((folder / ".arbor-retrieve.json").read_text(), out)
+
+    def test_bearer_token(self):
+        gateway = BearerGateway(self.orthanc, "token-5309")
+        try:
+            node = f"http://127.0.0.1:{gateway.port}/dicom-web"
+            no_basic = {"ARBOR_PACS_USER": "", "ARBOR_PACS_PASSWORD": ""}
+            rows = json.loads(self.pacs("pacs", "find", node, "--json", "--modality", "MR",
+                                        env={**no_basic, "ARBOR_PACS_TOKEN": "token-5309"})[1])
+            self.assertEqual([r["series_uid"] for r in rows], [self.mr_series])
+            folder = self.out / "bearer"
+            self.pacs("pacs", "get", node, "--series", self.j2k_series, "-o", folder,
+                      env={**no_basic, "ARBOR_PACS_TOKEN": "token-5309"})
+            self.assertEqual(sop_uids(folder), {str(pydicom.dcmread(J2K, stop_before_pixels=True).SOPInstanceUID)})
+            status, _, err = self.pacs("pacs", "echo", node, check=False, env={**no_basic, "ARBOR_PACS_TOKEN": "wrong"})
+            self.assertEqual(status, 1)
+            self.assertIn("refused our credentials (HTTP 401)", err)
+        finally:
+            gateway.close()
 
     def test_a_folder_with_other_files_is_refused(self):
         folder = self.out / "occupied"
