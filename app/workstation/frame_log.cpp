@@ -19,11 +19,12 @@ FrameLog::~FrameLog()
         std::fclose(file_);
 }
 
-void FrameLog::write(double time_s, double frame_ms, const std::string &jobs)
+void FrameLog::write(double time_s, double frame_ms, const std::string &jobs, const std::string &where)
 {
     if (!file_)
         return;
-    std::fprintf(file_, "%.3f %.1f %s\n", time_s, frame_ms, jobs.empty() ? "-" : jobs.c_str());
+    std::fprintf(file_, "%.3f %.1f %s%s\n", time_s, frame_ms, jobs.empty() ? "-" : jobs.c_str(),
+                 where.empty() || frame_ms < 50 ? "" : (" [" + where + "]").c_str());
     std::fflush(file_);
 }
 

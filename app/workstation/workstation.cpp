@@ -441,19 +441,51 @@ void Workstation::screenshot(const fs::path &path)
 
 void Workstation::export_labels(const fs::path &path)
 {
-    const auto labels = pipeline_.run<Stage::Labels>();
-    const auto filtered = pipeline_.run<Stage::Filter>();
-    io::write_label_map(path, filtered->volume->geometry(), "arbor labels of " + filtered->source, labels->labels,
-                        labels->names);
-    say(ARBOR_LOG_INFO, "wrote the label map " + path.string());
+    // The jobs are asked for here; the thread waits for them and writes.
+    const auto labels = pipeline_.request(Stage::Labels);
+    const auto filtered = pipeline_.request(Stage::Filter);
+    writes_.push_back(std::async(std::launch::async, [labels, filtered, path] {
+        const auto l = std::static_pointer_cast<const pipeline::StageResult<Stage::Labels>>(labels->wait());
+        const auto f = std::static_pointer_cast<const pipeline::StageResult<Stage::Filter>>(filtered->wait());
+        io::write_label_map(path, f->volume->geometry(), "arbor labels of " + f->source, l->labels, l->names);
+        return "wrote the label map " + path.string();
+    }));
 }
 
 void Workstation::export_transfer_functions(const fs::path &path)
 {
-    const auto tf = pipeline_.run<Stage::TransferFunctions>();
-    const auto filtered = pipeline_.run<Stage::Filter>();
-    pipeline::write_transfer_functions(path, *tf, filtered->source);
-    say(ARBOR_LOG_INFO, "wrote the transfer functions " + path.string());
+    const auto tf = pipeline_.request(Stage::TransferFunctions);
+    const auto filtered = pipeline_.request(Stage::Filter);
+    writes_.push_back(std::async(std::launch::async, [tf, filtered, path] {
+        const auto t = std::static_pointer_cast<const pipeline::StageResult<Stage::TransferFunctions>>(tf->wait());
+        const auto f = std::static_pointer_cast<const pipeline::StageResult<Stage::Filter>>(filtered->wait());
+        pipeline::write_transfer_functions(path, *t, f->source);
+        return "wrote the transfer functions " + path.string();
+    }));
+}
+
+void Workstation::harvest_writes(bool wait)
+{
+    for (auto it = writes_.begin(); it != writes_.end();) {
+        if (!wait && it->wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
+            ++it;
+            continue;
+        }
+        try {
+            say(ARBOR_LOG_INFO, it->get());
+        } catch (const std::exception &e) {
+            error_ = e.what();
+            write_failures_.push_back(e.what());
+            say(ARBOR_LOG_ERROR, e.what());
+        }
+        it = writes_.erase(it);
+    }
+}
+
+std::vector<std::string> Workstation::finish_writes()
+{
+    harvest_writes(true);
+    return std::exchange(write_failures_, {});
 }
 
 void Workstation::volume_changed()
@@ -507,6 +539,7 @@ void Workstation::request_views()
 
 void Workstation::poll()
 {
+    harvest_writes(false);
     if (!has_input() || cancelled_)
         return;
     request_views();
@@ -522,6 +555,8 @@ void Workstation::poll()
 
 bool Workstation::idle() const
 {
+    if (!writes_.empty())
+        return false;
     if (cancelled_)
         return pipeline_.active_jobs().empty();
     if (!has_input())

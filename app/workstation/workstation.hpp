@@ -20,6 +20,7 @@
 #include <array>
 #include <deque>
 #include <filesystem>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -118,8 +119,14 @@ public:
     void screenshot(const std::filesystem::path &path);
     // Label map (NRRD with a Slicer colour table) and transfer functions
     // (arbor-transfer-functions/1) of what is shown.
+    // Exports are written on a thread of their own (a label map of a CT is
+    // hundreds of milliseconds of compression): the window keeps drawing,
+    // the message comes when the file is written, idle() waits for them and
+    // a failure becomes error().
     void export_labels(const std::filesystem::path &path);
     void export_transfer_functions(const std::filesystem::path &path);
+    // Waits for the exports still being written; their failures.
+    std::vector<std::string> finish_writes();
 
     // Cancel: every job and the render in flight stop; nothing is asked
     // again until resume() or the next change (the Jobs panel offers Resume).
@@ -153,6 +160,7 @@ private:
     void show(const pipeline::Document &document); // set on the pipeline, touch the view
     void volume_changed();
     void request_views();
+    void harvest_writes(bool wait);
 
     pipeline::Pipeline pipeline_;
     std::unique_ptr<pipeline::ProgressiveView> view3d_;
@@ -163,6 +171,8 @@ private:
     uint64_t filter_revision_ = 0; // of the volume the view state was set for
     std::deque<Message> messages_;
     std::string error_;
+    std::vector<std::future<std::string>> writes_; // exports being written; each says what it wrote
+    std::vector<std::string> write_failures_;
     bool cancelled_ = false;
     std::array<uint64_t, pipeline::kGroupCount> requested_{};
     std::vector<std::array<float, 3>> colors_;

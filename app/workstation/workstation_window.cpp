@@ -31,6 +31,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <sys/resource.h>
 
 namespace arbor::workstation {
 
@@ -68,6 +69,21 @@ cv::Mat read_framebuffer(GLFWwindow *window)
         }
     }
     return bgr;
+}
+
+// The calling thread's CPU time and page faults so far.
+struct ThreadUsage {
+    double cpu_s = 0;
+    long faults = 0;
+};
+
+ThreadUsage thread_usage()
+{
+    rusage u{};
+    getrusage(RUSAGE_THREAD, &u);
+    return {static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+                static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) * 1e-6,
+            u.ru_minflt + u.ru_majflt};
 }
 
 class Window final : public ScriptWindow {
@@ -125,6 +141,19 @@ private:
     GLFWwindow *window_ = nullptr;
     std::optional<ScriptRunner> script_;
     std::optional<FrameLog> frame_log_;
+    // Where the current frame's time goes, for the frame log's slow frames.
+    std::string phases_;
+    double phase_start_ = 0;
+    void phase(const char *name)
+    {
+        if (!frame_log_)
+            return;
+        const double now = seconds();
+        char text[48];
+        std::snprintf(text, sizeof text, "%s%s %.1f", phases_.empty() ? "" : " ", name, (now - phase_start_) * 1000);
+        phases_ += text;
+        phase_start_ = now;
+    }
     const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
     std::optional<fs::path> capture_;
@@ -448,6 +477,7 @@ void Window::frame()
     ImGui_ImplGlfw_NewFrame();
     // Scripted steps come after the platform back end read the real input
     // and before ImGui sees it, as a person's would.
+    phase("new-frame");
     if (script_ && !script_->done()) {
         try {
             script_->step(ws_, *this);
@@ -460,8 +490,10 @@ void Window::frame()
     for (const std::string &p : g_dropped)
         open(p);
     g_dropped.clear();
+    phase("script");
     ImGui::NewFrame();
     ws_.poll();
+    phase("poll");
     if (!io.WantTextInput) {
         if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Z, false))
             ws_.undo();
@@ -476,10 +508,12 @@ void Window::frame()
     }
     menu();
     layout();
+    phase("views");
     dialogs();
     dicom_.draw(ws_);
     help();
     ImGui::Render();
+    phase("imgui");
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(window_, &fw, &fh);
     glViewport(0, 0, fw, fh);
@@ -496,9 +530,12 @@ void Window::frame()
         }));
         capture_.reset();
     }
+    phase("gl");
     glfwSwapBuffers(window_);
+    phase("swap");
     finish_captures(false);
     autosave();
+    phase("autosave");
 }
 
 int Window::run()
@@ -554,14 +591,26 @@ int Window::run()
             const bool scripted = script_ && !script_->done();
             glfwWaitEventsTimeout(scripted ? 1.0 / 60 : !ws_.idle() ? 0.1 : 0.5);
             const double begin = seconds();
+            const ThreadUsage before = thread_usage();
+            phases_.clear();
+            phase_start_ = begin;
             frame();
             const double end = seconds();
             // The frame's own time: input, drawing and the swap (not the wait).
-            if (frame_log_)
-                frame_log_->write(end, (end - begin) * 1000, job_summary());
+            if (frame_log_) {
+                const ThreadUsage after = thread_usage();
+                char usage[64];
+                std::snprintf(usage, sizeof usage, "cpu %.1f faults %ld | ", (after.cpu_s - before.cpu_s) * 1000,
+                              after.faults - before.faults);
+                frame_log_->write(end, (end - begin) * 1000, job_summary(), usage + phases_);
+            }
         }
         ws_.volume_view().on_frame({});
         finish_captures(true);
+        for (const std::string &failure : ws_.finish_writes()) {
+            std::fprintf(stderr, "arbor view: %s\n", failure.c_str());
+            status_ = 1;
+        }
         status = status_;
     } catch (const std::exception &e) {
         ws_.volume_view().on_frame({});
