@@ -674,6 +674,17 @@ def png_pixels(path):
 
 
 class Run(unittest.TestCase):
+    def test_the_image_is_the_same_with_1_2_and_8_threads(self):
+        """Tiles are split over threads; no thread count changes a pixel."""
+        images = []
+        for threads in (1, 2, 8):
+            out = SCRATCH / f"threads-{threads}.png"
+            arbor("run", DATA / "tooth/tooth.nhdr", "--no-cache", "--renderer", "cpu-raycast",
+                  "--cpu-raycast.threads", threads, "--width", 200, "--height", 200, "-o", out)
+            images.append(out.read_bytes())
+        self.assertEqual(images[0], images[1], "1 and 2 threads")
+        self.assertEqual(images[0], images[2], "1 and 8 threads")
+
     def check_report(self, report, image):
         r = json.loads(report.read_text())
         self.assertEqual(r["format"], "arbor-run-report/1")
