@@ -11,6 +11,7 @@ Orthanc runs in the foreground as a child process and is stopped by its PID
 chosen free at start.
 """
 import base64
+import ctypes
 import json
 import os
 import pathlib
@@ -25,6 +26,13 @@ import urllib.request
 
 ORTHANC = shutil.which("Orthanc") or "/usr/sbin/Orthanc"
 DICOMWEB_PLUGIN = pathlib.Path("/usr/share/orthanc/plugins/libOrthancDicomWeb.so")
+
+
+def _die_with_parent():
+    """In the child: SIGTERM when the test process dies, however it dies,
+    so a killed test run leaves no archive behind."""
+    PR_SET_PDEATHSIG = 1
+    ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGTERM)
 
 
 def free_port():
@@ -73,7 +81,7 @@ class Orthanc:
         (self.folder / "orthanc.json").write_text(json.dumps(config, indent=2))
         self.log = open(self.folder / "orthanc.log", "w")
         self.process = subprocess.Popen([ORTHANC, str(self.folder / "orthanc.json")],
-                                        stdout=self.log, stderr=subprocess.STDOUT)
+                                        stdout=self.log, stderr=subprocess.STDOUT, preexec_fn=_die_with_parent)
         deadline = time.monotonic() + 20
         while time.monotonic() < deadline:
             if self.process.poll() is not None:
