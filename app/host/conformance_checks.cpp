@@ -119,7 +119,7 @@ private:
             return "create_plugin returned " + status_text(s);
         if (!p_)
             return "create_plugin returned ok but no instance";
-        if (p_->struct_size < sizeof(arbor_plugin))
+        if (p_->struct_size < ARBOR_MIN_SIZE(arbor_plugin))
             return "instance struct_size is too small";
         if (!p_->destroy || !p_->get_interface || !p_->last_error)
             return "instance has NULL functions";
@@ -666,7 +666,7 @@ private:
         r2.frame_width = r2.frame_height = 16;
         r2.region_width = r2.region_height = 16;
         run("renderer/2 interface", [&] {
-            return t2->struct_size >= sizeof(arbor_renderer_v2) && t2->render ? std::string()
+            return t2->struct_size >= ARBOR_MIN_SIZE(arbor_renderer_v2) && t2->render ? std::string()
                                                                              : std::string("table incomplete");
         });
         run("renderer/2 invalid regions and passes", [&] {

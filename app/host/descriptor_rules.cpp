@@ -119,9 +119,9 @@ std::string check_descriptor(const arbor_plugin_descriptor *d)
 {
     if (!d)
         return "descriptor is NULL";
-    if (d->struct_size < sizeof(arbor_plugin_descriptor))
+    if (d->struct_size < ARBOR_MIN_SIZE(arbor_plugin_descriptor))
         return "descriptor struct_size " + std::to_string(d->struct_size) + " is smaller than " +
-               std::to_string(sizeof(arbor_plugin_descriptor));
+               std::to_string(ARBOR_MIN_SIZE(arbor_plugin_descriptor));
     if (std::string e = check_plugin_id(d->id); !e.empty())
         return e;
     if (!d->kind)
@@ -152,9 +152,9 @@ std::string check_param_desc(const arbor_param_desc *d)
 {
     if (!d)
         return "parameter description is NULL";
-    if (d->struct_size < sizeof(arbor_param_desc))
+    if (d->struct_size < ARBOR_MIN_SIZE(arbor_param_desc))
         return "parameter description struct_size " + std::to_string(d->struct_size) +
-               " is smaller than " + std::to_string(sizeof(arbor_param_desc));
+               " is smaller than " + std::to_string(ARBOR_MIN_SIZE(arbor_param_desc));
     if (std::string e = check_param_id(d->id); !e.empty())
         return e;
     const std::string who = "parameter '" + std::string(d->id) + "'";

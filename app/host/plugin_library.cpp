@@ -33,9 +33,9 @@ std::unique_ptr<PluginLibrary> PluginLibrary::load(const std::filesystem::path &
                             ", this host speaks ABI " + std::to_string(ARBOR_ABI_VERSION_MAJOR) +
                             ".x; rebuild it against SDK " +
                             std::to_string(ARBOR_ABI_VERSION_MAJOR) + ".x");
-    if (entry->struct_size < sizeof(arbor_plugin_entry))
+    if (entry->struct_size < ARBOR_MIN_SIZE(arbor_plugin_entry))
         throw PluginRefused("entry struct_size " + std::to_string(entry->struct_size) +
-                            " is smaller than " + std::to_string(sizeof(arbor_plugin_entry)));
+                            " is smaller than " + std::to_string(ARBOR_MIN_SIZE(arbor_plugin_entry)));
     if (!entry->init || !entry->deinit || !entry->plugin_count || !entry->plugin_descriptor ||
         !entry->create_plugin)
         throw PluginRefused("entry has NULL functions");

@@ -119,7 +119,7 @@ PluginInstance PluginRegistry::create(std::string_view id) const
         throw PluginError(s == ARBOR_OK ? ARBOR_ERROR_INTERNAL : s,
                           std::string(id) + ": could not create an instance (" +
                               arbor_status_name(s) + ")");
-    if (plugin->struct_size < sizeof(arbor_plugin) || !plugin->destroy || !plugin->get_interface ||
+    if (plugin->struct_size < ARBOR_MIN_SIZE(arbor_plugin) || !plugin->destroy || !plugin->get_interface ||
         !plugin->last_error || !plugin->descriptor) {
         // Cannot trust destroy() here; leak rather than crash.
         throw PluginError(ARBOR_ERROR_INTERNAL,

@@ -50,7 +50,7 @@ RenderDevice render_device(const PluginInstance &renderer)
     RenderDevice device;
     const auto *table = static_cast<const arbor_render_device_v1 *>(
         renderer.get()->get_interface(renderer.get(), ARBOR_INTERFACE_RENDER_DEVICE));
-    if (!table || table->struct_size < sizeof(arbor_render_device_v1) || !table->describe)
+    if (!table || table->struct_size < ARBOR_MIN_SIZE(arbor_render_device_v1) || !table->describe)
         return device;
     arbor_render_device d{};
     d.struct_size = sizeof d;

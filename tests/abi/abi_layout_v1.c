@@ -139,6 +139,7 @@ _Static_assert(offsetof(arbor_params_v1, set) == 24, "offset of arbor_params_v1.
 _Static_assert(sizeof(arbor_plugin) == 48, "size of arbor_plugin changed");
 _Static_assert(_Alignof(arbor_plugin) == 8, "alignment of arbor_plugin changed");
 _Static_assert(offsetof(arbor_plugin, struct_size) == 0, "offset of arbor_plugin.struct_size changed");
+_Static_assert(offsetof(arbor_plugin, reserved0) == 4, "offset of arbor_plugin.reserved0 changed");
 _Static_assert(offsetof(arbor_plugin, descriptor) == 8, "offset of arbor_plugin.descriptor changed");
 _Static_assert(offsetof(arbor_plugin, plugin_data) == 16, "offset of arbor_plugin.plugin_data changed");
 _Static_assert(offsetof(arbor_plugin, destroy) == 24, "offset of arbor_plugin.destroy changed");
@@ -220,6 +221,7 @@ _Static_assert(offsetof(arbor_simplifier_v1, importance) == 8, "offset of arbor_
 _Static_assert(sizeof(arbor_task) == 40, "size of arbor_task changed");
 _Static_assert(_Alignof(arbor_task) == 8, "alignment of arbor_task changed");
 _Static_assert(offsetof(arbor_task, struct_size) == 0, "offset of arbor_task.struct_size changed");
+_Static_assert(offsetof(arbor_task, reserved0) == 4, "offset of arbor_task.reserved0 changed");
 _Static_assert(offsetof(arbor_task, host_data) == 8, "offset of arbor_task.host_data changed");
 _Static_assert(offsetof(arbor_task, progress) == 16, "offset of arbor_task.progress changed");
 _Static_assert(offsetof(arbor_task, cancelled) == 24, "offset of arbor_task.cancelled changed");
@@ -232,6 +234,7 @@ _Static_assert(_Alignof(arbor_tf_point) == 8, "alignment of arbor_tf_point chang
 _Static_assert(offsetof(arbor_tf_point, value) == 0, "offset of arbor_tf_point.value changed");
 _Static_assert(offsetof(arbor_tf_point, rgba) == 8, "offset of arbor_tf_point.rgba changed");
 _Static_assert(offsetof(arbor_tf_point, reserved0) == 24, "offset of arbor_tf_point.reserved0 changed");
+_Static_assert(offsetof(arbor_tf_point, reserved1) == 28, "offset of arbor_tf_point.reserved1 changed");
 _Static_assert(sizeof(arbor_tf_request) == 72, "size of arbor_tf_request changed");
 _Static_assert(_Alignof(arbor_tf_request) == 8, "alignment of arbor_tf_request changed");
 _Static_assert(offsetof(arbor_tf_request, struct_size) == 0, "offset of arbor_tf_request.struct_size changed");

@@ -509,6 +509,16 @@ class Simplify(unittest.TestCase):
         # Squaring the volume ranks branches as the volume does.
         self.assertEqual(r["overlaps"][0]["jaccard"], 1.0)
 
+    def test_a_plugin_built_against_the_abi_1_0_headers_runs_in_this_host(self):
+        out = SCRATCH / "compare-abi-1-0"
+        env = {"ARBOR_PLUGIN_PATH": str(FIXTURES / "fixture-simplifier-abi-1-0")}
+        _, listed, _ = arbor("plugins", env=env)
+        self.assertIn("org.arbor.test.simplifier.abi-1-0", listed)
+        arbor("compare", "--phantom", "head", "--phantom-size", 48, "--keep", 5, "--simplifiers",
+              "org.arbor.test.simplifier.abi-1-0,org.arbor.simplifier.volume", "--out", out, env=env)
+        r = json.loads((out / "report.json").read_text())
+        self.assertEqual(r["overlaps"][0]["jaccard"], 1.0)
+
     def test_bad_simplifiers_and_arguments_are_refused_clearly(self):
         (SCRATCH / "bad.json").unlink(missing_ok=True)
         for library, id_ in (("fixture-simplifier-nan", "org.arbor.test.simplifier.nan"),

@@ -96,7 +96,7 @@ static arbor_status params_get(const arbor_plugin *plugin, const char *id, arbor
     if (!self)
         return ARBOR_ERROR_INVALID_ARGUMENT;
     self->error[0] = '\0';
-    if (!id || !out || out->struct_size < sizeof(arbor_param_value))
+    if (!id || !out || out->struct_size < ARBOR_MIN_SIZE(arbor_param_value))
         return fail(self, ARBOR_ERROR_INVALID_ARGUMENT, "get: NULL id or value record too small");
     i = param_index(id);
     if (i < 0)
@@ -115,7 +115,7 @@ static arbor_status params_set(arbor_plugin *plugin, const char *id, const arbor
     if (!self)
         return ARBOR_ERROR_INVALID_ARGUMENT;
     self->error[0] = '\0';
-    if (!id || !v || v->struct_size < sizeof(arbor_param_value))
+    if (!id || !v || v->struct_size < ARBOR_MIN_SIZE(arbor_param_value))
         return fail(self, ARBOR_ERROR_INVALID_ARGUMENT, "set: NULL id or value record too small");
     i = param_index(id);
     if (i < 0)
@@ -138,7 +138,7 @@ static arbor_status check_volume(window_instance *self, const arbor_volume *v, c
 {
     char message[160];
     int a;
-    if (!v || v->struct_size < sizeof(arbor_volume) || !v->voxels) {
+    if (!v || v->struct_size < ARBOR_MIN_SIZE(arbor_volume) || !v->voxels) {
         snprintf(message, sizeof message, "%s volume is NULL, too small or has no voxels", what);
         return fail(self, ARBOR_ERROR_INVALID_ARGUMENT, message);
     }
@@ -161,7 +161,7 @@ static arbor_status filter_output_type(arbor_plugin *plugin, const arbor_volume 
     if (!self)
         return ARBOR_ERROR_INVALID_ARGUMENT;
     self->error[0] = '\0';
-    if (!input || input->struct_size < sizeof(arbor_volume) || !out_type)
+    if (!input || input->struct_size < ARBOR_MIN_SIZE(arbor_volume) || !out_type)
         return fail(self, ARBOR_ERROR_INVALID_ARGUMENT, "output_type: NULL argument");
     *out_type = input->voxel_type; /* windowing keeps the voxel type */
     return ARBOR_OK;

@@ -8,7 +8,9 @@
  *  - C99, fixed-width integer types only; "enums" are uint32_t typedefs with
  *    #define'd values that never change meaning.
  *  - Every data record starts with `uint32_t struct_size` (the size the writer
- *    of the record was compiled with) and only ever grows at its end.  The
+ *    of the record was compiled with) and only ever grows at its end; a
+ *    reader demands only ARBOR_MIN_SIZE(type), never sizeof.  Every byte of a
+ *    record is a named field on every architecture (padding is "reserved").  The
  *    caller allocates records and sets struct_size; a callee must not touch
  *    fields beyond struct_size.
  *  - Inputs are borrowed: valid during the call, read-only.  Outputs go into
@@ -43,7 +45,7 @@
  * interface ids; a plugin built against a newer minor than the host must check
  * struct sizes and interface availability before using additions. */
 #define ARBOR_ABI_VERSION_MAJOR 1
-#define ARBOR_ABI_VERSION_MINOR 2
+#define ARBOR_ABI_VERSION_MINOR 3
 #define ARBOR_ABI_VERSION_PATCH 0
 
 typedef struct arbor_version {
@@ -111,5 +113,17 @@ static inline const char *arbor_status_name(arbor_status status)
  *     if (ARBOR_HAS_FIELD(arbor_volume, volume->struct_size, value_unit)) ... */
 #define ARBOR_HAS_FIELD(type, size, field) \
     ((size) >= (uint32_t)(offsetof(type, field) + sizeof(((type *)0)->field)))
+
+/* The bytes of a record up to the end of `field`. */
+#define ARBOR_SIZE_THROUGH(type, field) ((uint32_t)(offsetof(type, field) + sizeof(((type *)0)->field)))
+
+/* The least struct_size a reader may demand of a record: the end of its last
+ * field in the minor that introduced the record (1.0 for most; each header
+ * defines ARBOR_MIN_SIZE_<type> after the record).  Check records against
+ * this, never against sizeof, which grows with every minor: a record written
+ * by a 1.0 plugin or host stays valid in every 1.x, and fields added later
+ * are read only under ARBOR_HAS_FIELD.
+ *     if (!rows || rows->struct_size < ARBOR_MIN_SIZE(arbor_measure_rows)) ... */
+#define ARBOR_MIN_SIZE(type) ARBOR_MIN_SIZE_##type
 
 #endif /* ARBOR_ABI_H */

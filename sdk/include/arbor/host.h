@@ -37,6 +37,7 @@ struct arbor_host {
      * exists so later minors can add services without a new record. */
     const void *(*get_extension)(const arbor_host *host, const char *extension_id);
 };
+#define ARBOR_MIN_SIZE_arbor_host ARBOR_SIZE_THROUGH(arbor_host, get_extension) /* through ABI 1.0 */
 
 typedef struct arbor_task arbor_task;
 
@@ -44,6 +45,7 @@ typedef struct arbor_task arbor_task;
  * functions are thread-safe: a plugin may call them from its worker threads. */
 struct arbor_task {
     uint32_t struct_size;
+    uint32_t reserved0; /* 0; the padding before the pointers, named (ABI 1.3) */
     void *host_data; /* private to the host */
 
     /* Report progress of the current call: fraction in [0, 1], stage a short
@@ -63,5 +65,6 @@ struct arbor_task {
      * return ARBOR_ERROR_OUT_OF_MEMORY or ARBOR_ERROR_TOO_LARGE. */
     void *(*allocate)(arbor_task *task, uint64_t size);
 };
+#define ARBOR_MIN_SIZE_arbor_task ARBOR_SIZE_THROUGH(arbor_task, allocate) /* through ABI 1.0 */
 
 #endif /* ARBOR_HOST_H */

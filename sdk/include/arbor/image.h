@@ -40,5 +40,6 @@ typedef struct arbor_image {
      * the host point rgba and depth at a tile inside a larger frame. */
     int64_t depth_stride;
 } arbor_image;
+#define ARBOR_MIN_SIZE_arbor_image ARBOR_SIZE_THROUGH(arbor_image, depth) /* through ABI 1.0 */
 
 #endif /* ARBOR_IMAGE_H */

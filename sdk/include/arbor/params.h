@@ -65,6 +65,7 @@ typedef struct arbor_param_desc {
     /* STRING, PATH: default text ("" for none). */
     const char *default_text;
 } arbor_param_desc;
+#define ARBOR_MIN_SIZE_arbor_param_desc ARBOR_SIZE_THROUGH(arbor_param_desc, default_text) /* through ABI 1.0 */
 
 typedef struct arbor_param_value {
     uint32_t struct_size;
@@ -74,6 +75,7 @@ typedef struct arbor_param_value {
     double number[ARBOR_PARAM_MAX_COMPONENTS]; /* FLOAT, INT, BOOL, CHOICE */
     const char *text;                          /* STRING, PATH */
 } arbor_param_value;
+#define ARBOR_MIN_SIZE_arbor_param_value ARBOR_SIZE_THROUGH(arbor_param_value, text) /* through ABI 1.0 */
 
 typedef struct arbor_params_v1 {
     /* Number of parameters of the instance; constant for its life. */

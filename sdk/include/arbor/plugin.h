@@ -55,6 +55,7 @@ typedef struct arbor_plugin_descriptor {
     const char *description; /* one or two sentences */
     const char *url;         /* documentation, may be "" */
 } arbor_plugin_descriptor;
+#define ARBOR_MIN_SIZE_arbor_plugin_descriptor ARBOR_SIZE_THROUGH(arbor_plugin_descriptor, url) /* through ABI 1.0 */
 
 typedef struct arbor_plugin arbor_plugin;
 
@@ -62,6 +63,7 @@ typedef struct arbor_plugin arbor_plugin;
  * its own destroy(); the host reads the fields but never writes them. */
 struct arbor_plugin {
     uint32_t struct_size;
+    uint32_t reserved0; /* 0; the padding before the pointers, named (ABI 1.3) */
     const arbor_plugin_descriptor *descriptor;
     void *plugin_data; /* private to the plugin */
 
@@ -79,6 +81,7 @@ struct arbor_plugin {
      * the next call into the instance. */
     const char *(*last_error)(const arbor_plugin *plugin);
 };
+#define ARBOR_MIN_SIZE_arbor_plugin ARBOR_SIZE_THROUGH(arbor_plugin, last_error) /* through ABI 1.0 */
 
 typedef struct arbor_plugin_entry {
     uint32_t struct_size;
@@ -104,6 +107,7 @@ typedef struct arbor_plugin_entry {
     arbor_status (*create_plugin)(const arbor_host *host, const char *plugin_id,
                                   arbor_plugin **out);
 } arbor_plugin_entry;
+#define ARBOR_MIN_SIZE_arbor_plugin_entry ARBOR_SIZE_THROUGH(arbor_plugin_entry, create_plugin) /* through ABI 1.0 */
 
 /* Name of the one exported symbol. */
 #define ARBOR_ENTRY_SYMBOL "arbor_entry"

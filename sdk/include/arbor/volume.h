@@ -83,5 +83,6 @@ typedef struct arbor_volume {
     /* Voxel (0, 0, 0).  Read-only when the volume is an input of a call. */
     void *voxels;
 } arbor_volume;
+#define ARBOR_MIN_SIZE_arbor_volume ARBOR_SIZE_THROUGH(arbor_volume, voxels) /* through ABI 1.0 */
 
 #endif /* ARBOR_VOLUME_H */

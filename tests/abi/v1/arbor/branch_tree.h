@@ -77,6 +77,7 @@ typedef struct arbor_branch_tree {
      * was cut, or NULL when the tree was not simplified. */
     const double *importance;
 } arbor_branch_tree;
+#define ARBOR_MIN_SIZE_arbor_branch_tree ARBOR_SIZE_THROUGH(arbor_branch_tree, importance) /* through ABI 1.0 */
 
 /* Which branch every voxel belongs to at the current simplification level:
  * labels are branch indices into the arbor_branch_tree it was cut with. */
@@ -86,5 +87,6 @@ typedef struct arbor_label_map {
     int64_t dims[3];      /* the volume's dims */
     const uint32_t *labels; /* contiguous, i fastest */
 } arbor_label_map;
+#define ARBOR_MIN_SIZE_arbor_label_map ARBOR_SIZE_THROUGH(arbor_label_map, labels) /* through ABI 1.0 */
 
 #endif /* ARBOR_BRANCH_TREE_H */

@@ -32,6 +32,7 @@ typedef struct arbor_depiction_request {
     int32_t selected_branch; /* branch index, or -1 when nothing is selected */
     const arbor_branch_tree *tree;
 } arbor_depiction_request;
+#define ARBOR_MIN_SIZE_arbor_depiction_request ARBOR_SIZE_THROUGH(arbor_depiction_request, tree) /* through ABI 1.0 */
 
 /* Output.  Every array has tree->branch_count entries and is host-owned. */
 typedef struct arbor_depiction {
@@ -50,6 +51,7 @@ typedef struct arbor_depiction {
     /* Multiplier in [0, 1] of the branch's vividness (1 = unchanged). */
     float *saturation;
 } arbor_depiction;
+#define ARBOR_MIN_SIZE_arbor_depiction ARBOR_SIZE_THROUGH(arbor_depiction, saturation) /* through ABI 1.0 */
 
 typedef struct arbor_depictor_v1 {
     /* Compute the depiction for the request into *out. */

@@ -36,6 +36,7 @@ typedef struct arbor_camera {
     double view_angle;     /* perspective: vertical field of view, degrees */
     double parallel_scale; /* orthographic: half the viewport height, mm */
 } arbor_camera;
+#define ARBOR_MIN_SIZE_arbor_camera ARBOR_SIZE_THROUGH(arbor_camera, parallel_scale) /* through ABI 1.0 */
 
 typedef struct arbor_render_request {
     uint32_t struct_size;
@@ -48,6 +49,7 @@ typedef struct arbor_render_request {
     uint64_t volume_revision;                /* changes when voxel values change */
     uint64_t labels_revision;                /* changes when labels change */
 } arbor_render_request;
+#define ARBOR_MIN_SIZE_arbor_render_request ARBOR_SIZE_THROUGH(arbor_render_request, labels_revision) /* through ABI 1.0 */
 
 typedef struct arbor_renderer_v1 {
     /* Render into *out (size chosen by the host).  Report progress per row
@@ -128,6 +130,7 @@ typedef struct arbor_render_request_v2 {
     uint32_t sample_index;                  /* SUPERSAMPLE: 1, 2, ...; else 0 */
     uint32_t reserved0;
 } arbor_render_request_v2;
+#define ARBOR_MIN_SIZE_arbor_render_request_v2 ARBOR_SIZE_THROUGH(arbor_render_request_v2, reserved0) /* through ABI 1.2 */
 
 typedef struct arbor_renderer_v2 {
     uint32_t struct_size;
@@ -136,6 +139,7 @@ typedef struct arbor_renderer_v2 {
     arbor_status (*render)(arbor_plugin *plugin, const arbor_render_request_v2 *request,
                            arbor_image *out, arbor_task *task);
 } arbor_renderer_v2;
+#define ARBOR_MIN_SIZE_arbor_renderer_v2 ARBOR_SIZE_THROUGH(arbor_renderer_v2, render) /* through ABI 1.2 */
 
 /* ------------------------------------------------------------------------
  * arbor.render-device/1 (since ABI 1.2): what a renderer renders on, so
@@ -159,11 +163,13 @@ typedef struct arbor_render_device {
      * of the instance. */
     const char *name;
 } arbor_render_device;
+#define ARBOR_MIN_SIZE_arbor_render_device ARBOR_SIZE_THROUGH(arbor_render_device, name) /* through ABI 1.2 */
 
 typedef struct arbor_render_device_v1 {
     uint32_t struct_size;
     uint32_t reserved0;
     arbor_status (*describe)(const arbor_plugin *plugin, arbor_render_device *out);
 } arbor_render_device_v1;
+#define ARBOR_MIN_SIZE_arbor_render_device_v1 ARBOR_SIZE_THROUGH(arbor_render_device_v1, describe) /* through ABI 1.2 */
 
 #endif /* ARBOR_RENDERER_H */

@@ -27,6 +27,7 @@ typedef struct arbor_measure_rows {
     const double *measures;          /* [row_count * measure_count] absolute */
     const double *relative_measures; /* same layout, each column / the root's */
 } arbor_measure_rows;
+#define ARBOR_MIN_SIZE_arbor_measure_rows ARBOR_SIZE_THROUGH(arbor_measure_rows, relative_measures) /* through ABI 1.0 */
 
 typedef struct arbor_simplifier_v1 {
     /* Called once before a pruning run.  `schema` names the columns (its

@@ -30,6 +30,7 @@ typedef struct arbor_tf_point {
     double value;  /* stored scalar value */
     float rgba[4]; /* straight sRGB colour and opacity, each in [0, 1] */
     uint32_t reserved0;
+    uint32_t reserved1; /* 0; the tail padding, named (ABI 1.3) */
 } arbor_tf_point;
 
 typedef struct arbor_tf_request {
@@ -53,6 +54,7 @@ typedef struct arbor_tf_request {
     double background_level;
     double background_peak;
 } arbor_tf_request;
+#define ARBOR_MIN_SIZE_arbor_tf_request ARBOR_SIZE_THROUGH(arbor_tf_request, min_spacing) /* through ABI 1.0 */
 
 /* Output.  The host allocates domain, lut and point_offsets for branch_count
  * branches; the plugin fills them and sets `points` to memory it obtained from
@@ -76,6 +78,7 @@ typedef struct arbor_tf_set {
     uint32_t note_size;
     uint32_t reserved1;
 } arbor_tf_set;
+#define ARBOR_MIN_SIZE_arbor_tf_set ARBOR_SIZE_THROUGH(arbor_tf_set, points) /* through ABI 1.0 */
 
 typedef struct arbor_tf_generator_v1 {
     arbor_status (*generate)(arbor_plugin *plugin, const arbor_tf_request *request,

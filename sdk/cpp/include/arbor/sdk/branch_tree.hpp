@@ -21,7 +21,7 @@ public:
     {
         if (!t_)
             fail(ARBOR_ERROR_INVALID_ARGUMENT, "branch tree is NULL");
-        if (t_->struct_size < sizeof(arbor_branch_tree))
+        if (t_->struct_size < ARBOR_MIN_SIZE(arbor_branch_tree))
             fail(ARBOR_ERROR_INVALID_ARGUMENT, "branch tree: struct_size too small");
         if (t_->branch_count == 0)
             fail(ARBOR_ERROR_INVALID_ARGUMENT, "branch tree has no branches");

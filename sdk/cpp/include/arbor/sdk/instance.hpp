@@ -13,6 +13,7 @@
 
 #include "error.hpp"
 #include "params.hpp"
+#include "record_size.hpp"
 
 #include <cstring>
 #include <iterator>
@@ -84,10 +85,12 @@ public:
     }
 
     // Throws ARBOR_ERROR_INVALID_ARGUMENT unless `record` is non-null and its
-    // struct_size covers at least `min_size` bytes.
+    // struct_size covers at least `min_size` bytes (by default the record's
+    // ARBOR_MIN_SIZE: a record from any 1.x host is accepted; read fields
+    // added later only under ARBOR_HAS_FIELD).
     template <class Record>
     static void require_record(const Record *record, const char *what,
-                               std::size_t min_size = sizeof(Record))
+                               std::size_t min_size = min_record_size<Record>())
     {
         if (!record)
             fail(ARBOR_ERROR_INVALID_ARGUMENT, std::string(what) + " is NULL");

@@ -160,7 +160,7 @@ private:
 
     static arbor_status c_describe(const arbor_plugin *plugin, arbor_render_device *out)
     {
-        if (!plugin || !out || out->struct_size < sizeof(arbor_render_device))
+        if (!plugin || !out || out->struct_size < ARBOR_MIN_SIZE(arbor_render_device))
             return ARBOR_ERROR_INVALID_ARGUMENT;
         return guarded(plugin, [&](Instance &instance) {
             auto &self = static_cast<Renderer &>(instance);

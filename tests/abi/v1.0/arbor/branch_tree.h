@@ -1,0 +1,76 @@
+/*
+ * arbor/branch_tree.h - the branch decomposition of a contour tree, its
+ * per-branch measures, and the voxel -> branch label map it induces.
+ *
+ * A branch is a monotone path in the contour tree from a saddle to an extremum.
+ * Branch 0 is the root: it runs from the global minimum (its "saddle" fields)
+ * to the global maximum.  Every other branch hangs off its parent branch at
+ * its saddle.  Parents come before their children (parent[b] < b).
+ *
+ * Measures describe the region a branch encloses at its saddle, including
+ * every branch simplified into it.  They come as a table: measure_count
+ * columns named by measure_ids, one row per branch.  The host provides at
+ * least the ARBOR_MEASURE_* columns below; relative_measures divides each
+ * column by the root's value, so relative values lie in [0, 1] and do not
+ * change as the tree is simplified.
+ *
+ * Values (saddle_value, extremum_value) are stored voxel values, not physical
+ * ones.  Positions are LPS millimetres (see volume.h).  Vertices are voxel
+ * indices i + nx*(j + ny*k).
+ */
+#ifndef ARBOR_BRANCH_TREE_H
+#define ARBOR_BRANCH_TREE_H
+
+#include "abi.h"
+
+/* Measure column ids. */
+#define ARBOR_MEASURE_PERSISTENCE "persistence" /* |f(extremum) - f(saddle)| */
+#define ARBOR_MEASURE_VOLUME "volume"           /* voxels in the region */
+#define ARBOR_MEASURE_VOLUME_MM3 "volume-mm3"   /* the same in mm^3 */
+/* Sum over the region of f - f_min (f_min: global minimum of the volume). */
+#define ARBOR_MEASURE_HYPERVOLUME "hypervolume"
+/* Sum over the region of |f - f(saddle)| (Carr's hypervolume). */
+#define ARBOR_MEASURE_RELATIVE_HYPERVOLUME "relative-hypervolume"
+
+typedef uint32_t arbor_extremum_kind;
+#define ARBOR_EXTREMUM_MAXIMUM 1u /* the branch rises from its saddle */
+#define ARBOR_EXTREMUM_MINIMUM 2u /* the branch falls from its saddle */
+
+typedef struct arbor_branch_tree {
+    uint32_t struct_size;
+    uint32_t branch_count; /* >= 1 */
+    uint32_t measure_count;
+    uint32_t reserved0;
+
+    const int32_t *parent;         /* [branch_count]; -1 for the root */
+    const uint32_t *depth;         /* [branch_count]; root 0, child = parent + 1 */
+    const uint32_t *child_offsets; /* [branch_count + 1]: children of b are */
+    const uint32_t *children;      /*   children[child_offsets[b] .. child_offsets[b+1]) */
+
+    const arbor_extremum_kind *extremum_kind; /* [branch_count] */
+    const int64_t *saddle_vertex;             /* [branch_count] */
+    const int64_t *extremum_vertex;           /* [branch_count]; identifies a branch */
+    const double *saddle_value;               /* [branch_count] */
+    const double *extremum_value;             /* [branch_count] */
+    const double *saddle_position;            /* [3 * branch_count] */
+    const double *extremum_position;          /* [3 * branch_count] */
+
+    const char *const *measure_ids;  /* [measure_count] */
+    const double *measures;          /* [branch_count * measure_count], row per branch */
+    const double *relative_measures; /* same layout, each column / the root's */
+
+    /* [branch_count] importance the simplifier gave each branch when the tree
+     * was cut, or NULL when the tree was not simplified. */
+    const double *importance;
+} arbor_branch_tree;
+
+/* Which branch every voxel belongs to at the current simplification level:
+ * labels are branch indices into the arbor_branch_tree it was cut with. */
+typedef struct arbor_label_map {
+    uint32_t struct_size;
+    uint32_t label_count; /* = branch_count; every label is < label_count */
+    int64_t dims[3];      /* the volume's dims */
+    const uint32_t *labels; /* contiguous, i fastest */
+} arbor_label_map;
+
+#endif /* ARBOR_BRANCH_TREE_H */

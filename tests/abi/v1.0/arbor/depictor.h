@@ -1,0 +1,71 @@
+/*
+ * arbor/depictor.h - plugins that depict a relationship between branches
+ * (inclusion, neighbouring) as per-branch modulations of the transfer
+ * functions, plus an optional legend image.
+ *
+ * The host fills the output arrays with neutral values before the call (role
+ * OTHER, opacity factors 1, hue NaN, saturation 1); a depictor changes what its
+ * relationship needs.  The transfer-function generator applies the result.
+ */
+#ifndef ARBOR_DEPICTOR_H
+#define ARBOR_DEPICTOR_H
+
+#include "branch_tree.h"
+#include "host.h"
+#include "image.h"
+#include "plugin.h"
+
+#define ARBOR_INTERFACE_DEPICTOR "arbor.depictor/1"
+
+/* Role of a branch with respect to the selected branch. */
+typedef uint32_t arbor_branch_role;
+#define ARBOR_ROLE_OTHER 0u
+#define ARBOR_ROLE_SELECTED 1u
+#define ARBOR_ROLE_PARENT 2u
+#define ARBOR_ROLE_CHILD 3u
+#define ARBOR_ROLE_SIBLING 4u
+#define ARBOR_ROLE_ANCESTOR 5u   /* includes the selected branch, not its parent */
+#define ARBOR_ROLE_DESCENDANT 6u /* included by the selected branch, not a child */
+
+typedef struct arbor_depiction_request {
+    uint32_t struct_size;
+    int32_t selected_branch; /* branch index, or -1 when nothing is selected */
+    const arbor_branch_tree *tree;
+} arbor_depiction_request;
+
+/* Output.  Every array has tree->branch_count entries and is host-owned. */
+typedef struct arbor_depiction {
+    uint32_t struct_size;
+    uint32_t branch_count;
+    arbor_branch_role *role;
+    /* Opacity factors in [0, 1] at the branch's saddle value and at its
+     * extremum value; in between the factor is linear in the scalar value.
+     * Continuous depictions set a branch's saddle factor to its parent's
+     * factor at that value. */
+    float *opacity_at_saddle;
+    float *opacity_at_extremum;
+    /* Hue in degrees [0, 360) the branch must get, or NaN to leave the choice
+     * to the transfer-function generator. */
+    float *hue;
+    /* Multiplier in [0, 1] of the branch's vividness (1 = unchanged). */
+    float *saturation;
+} arbor_depiction;
+
+typedef struct arbor_depictor_v1 {
+    /* Compute the depiction for the request into *out. */
+    arbor_status (*depict)(arbor_plugin *plugin, const arbor_depiction_request *request,
+                           arbor_depiction *out, arbor_task *task);
+
+    /* *related = non-zero when branch a stands in this depictor's relationship
+     * to branch b (inclusion: b is a proper ancestor of a; neighbouring: a is
+     * b's parent, child or sibling). */
+    arbor_status (*related)(arbor_plugin *plugin, const arbor_branch_tree *tree, uint32_t a,
+                            uint32_t b, arbor_bool32 *related);
+
+    /* Draw the legend (e.g. the relation wheel) into the host's image of the
+     * size the host chose; ARBOR_ERROR_UNSUPPORTED when the depictor has none. */
+    arbor_status (*legend)(arbor_plugin *plugin, const arbor_depiction_request *request,
+                           arbor_image *out, arbor_task *task);
+} arbor_depictor_v1;
+
+#endif /* ARBOR_DEPICTOR_H */
