@@ -132,16 +132,8 @@ public:
 
     std::vector<SeriesRow> find_series(const PacsQuery &q) override
     {
-        std::vector<StudyRow> parents;
-        if (q.study_uid.empty()) {
-            parents = find_studies(q);
-        } else {
-            StudyRow only;
-            only.study_uid = q.study_uid;
-            parents.push_back(only);
-        }
         std::vector<SeriesRow> rows;
-        for (const StudyRow &study : parents) {
+        for (const StudyRow &study : studies_to_search(q, [&] { return find_studies(q); })) {
             std::string query = "/studies/" + escape(study.study_uid) +
                                 "/series?includefield=SeriesDescription&includefield=NumberOfSeriesRelatedInstances";
             add(query, "Modality", q.modality);

@@ -292,16 +292,8 @@ public:
         Association a(node_, options_);
         add_query_contexts(a, false);
         a.open("C-FIND");
-        std::vector<StudyRow> parents;
-        if (q.study_uid.empty()) {
-            parents = studies(a, q);
-        } else {
-            StudyRow only;
-            only.study_uid = q.study_uid;
-            parents.push_back(only);
-        }
         std::vector<SeriesRow> rows;
-        for (const StudyRow &study : parents) {
+        for (const StudyRow &study : studies_to_search(q, [&] { return studies(a, q); })) {
             for (SeriesRow &s : series_of(a, study, q.modality, ""))
                 rows.push_back(std::move(s));
             if (options_.stop.stop_requested())

@@ -88,6 +88,19 @@ public:
     virtual void retrieve(const std::string &series_uid, RetrieveMethod method, InstanceSink &sink) = 0;
 };
 
+// The studies a series search looks in: the one query.study_uid names, or
+// every study `search()` finds.  Series are searched study by study, as
+// strictly hierarchical archives need.
+template <class Search> std::vector<StudyRow> studies_to_search(const PacsQuery &query, Search search)
+{
+    if (!query.study_uid.empty()) {
+        StudyRow only;
+        only.study_uid = query.study_uid;
+        return {only};
+    }
+    return search();
+}
+
 std::unique_ptr<PacsClient> connect(const PacsNode &node, const PacsOptions &options);
 std::unique_ptr<PacsClient> connect_dimse(const PacsNode &node, const PacsOptions &options);
 std::unique_ptr<PacsClient> connect_dicomweb(const PacsNode &node, const PacsOptions &options);

@@ -11,10 +11,11 @@ layout change of a released record fails the build.
     python3 tests/abi/freeze_abi.py 1
 """
 import pathlib
-import re
 import subprocess
 import sys
 import tempfile
+
+from abi_records import records
 
 root = pathlib.Path(__file__).resolve().parents[2]
 major = sys.argv[1] if len(sys.argv) > 1 else "1"
@@ -22,35 +23,14 @@ src = root / "sdk" / "include" / "arbor"
 frozen = root / "tests" / "abi" / f"v{major}" / "arbor"
 frozen.mkdir(parents=True, exist_ok=True)
 
-structs = {}
 for header in sorted(src.glob("*.h")):
-    text = header.read_text()
-    (frozen / header.name).write_text(text)
-    for m in re.finditer(r"typedef struct (\w+) \{(.*?)\} \1;", text, re.S):
-        structs[m.group(1)] = m.group(2)
-    for m in re.finditer(r"\nstruct (\w+) \{(.*?)\};", text, re.S):
-        structs[m.group(1)] = m.group(2)
-
-def fields(body):
-    body = re.sub(r"/\*.*?\*/", "", body, flags=re.S)
-    names = []
-    for decl in body.split(";"):
-        decl = " ".join(decl.split())
-        if not decl:
-            continue
-        fp = re.search(r"\(\s*\*\s*(\w+)\s*\)", decl)
-        if fp:
-            names.append(fp.group(1))
-            continue
-        for part in decl.split(","):
-            m = re.search(r"(\w+)\s*(\[[^\]]*\])?\s*$", part.strip())
-            names.append(m.group(1))
-    return names
+    (frozen / header.name).write_text(header.read_text())
+structs = records(src)
 
 probe = ["#include <arbor/arbor.h>", "#include <stddef.h>", "#include <stdio.h>", "int main(void) {"]
 for name, body in sorted(structs.items()):
     probe.append(f'printf("S {name} %zu %zu\\n", sizeof({name}), _Alignof({name}));')
-    for f in fields(body):
+    for f in body:
         probe.append(f'printf("F {name} {f} %zu\\n", offsetof({name}, {f}));')
 IDS = ["ARBOR_ENTRY_SYMBOL", "ARBOR_KIND_IMPORTER", "ARBOR_KIND_FILTER", "ARBOR_KIND_SIMPLIFIER",
        "ARBOR_KIND_DEPICTOR", "ARBOR_KIND_TF_GENERATOR", "ARBOR_KIND_RENDERER",
