@@ -40,10 +40,20 @@ public:
     int64_t nx() const { return nx_; }
     int64_t ny() const { return ny_; }
     int64_t nz() const { return nz_; }
+    // Linear id offset of neighbour n (kFreudenthalOffsets[n]).
+    int64_t offset(std::size_t n) const { return linear_[n]; }
 
     // Calls f(neighbour vertex id) for every neighbour of vertex v.
     template <class F>
     void for_each(int64_t v, F &&f) const
+    {
+        for_each_indexed(v, [&f](std::size_t, int64_t w) { f(w); });
+    }
+
+    // Calls f(n, neighbour vertex id) for every neighbour of vertex v, where
+    // n indexes kFreudenthalOffsets.
+    template <class F>
+    void for_each_indexed(int64_t v, F &&f) const
     {
         // Vertex ids fit in 32 bits: divide by multiplying with precomputed
         // reciprocals (exact for 32-bit operands), not with the slow divider.
@@ -52,15 +62,15 @@ public:
         const int64_t i = v - row * nx_;
         const int64_t j = row - k * ny_;
         if (i > 0 && i + 1 < nx_ && j > 0 && j + 1 < ny_ && k > 0 && k + 1 < nz_) {
-            for (int64_t d : linear_)
-                f(v + d);
+            for (std::size_t n = 0; n < linear_.size(); ++n)
+                f(n, v + linear_[n]);
             return;
         }
         for (std::size_t n = 0; n < kFreudenthalOffsets.size(); ++n) {
             const NeighborOffset &o = kFreudenthalOffsets[n];
             const int64_t a = i + o.di, b = j + o.dj, c = k + o.dk;
             if (a >= 0 && a < nx_ && b >= 0 && b < ny_ && c >= 0 && c < nz_)
-                f(v + linear_[n]);
+                f(n, v + linear_[n]);
         }
     }
 

@@ -1,97 +1,124 @@
 #include "merge_tree.hpp"
 
+#include "link_components.hpp"
+
+#include <algorithm>
 #include <vector>
 
 namespace arbor::topology {
 
 namespace {
 
-// Root of x's component, halving the path on the way.
-inline uint32_t find_root(uint32_t *uf, uint32_t x)
-{
-    while (uf[x] != x) {
-        uf[x] = uf[uf[x]];
-        x = uf[x];
+// Union-find over components: link, newest vertex, union-by-rank height.
+// One entry per component (a leaf of the tree), created as the sweep finds it.
+struct Components {
+    std::vector<uint32_t> link;
+    std::vector<uint32_t> newest;
+    std::vector<uint8_t> height;
+
+    uint32_t create(uint32_t vertex)
+    {
+        const uint32_t c = static_cast<uint32_t>(link.size());
+        link.push_back(c);
+        newest.push_back(vertex);
+        height.push_back(0);
+        return c;
     }
-    return x;
-}
+
+    // Root of c's component, halving the path on the way.
+    uint32_t find(uint32_t c)
+    {
+        uint32_t *l = link.data();
+        while (l[c] != c) {
+            l[c] = l[l[c]];
+            c = l[c];
+        }
+        return c;
+    }
+
+    // Unites the roots a and b; returns the new root.
+    uint32_t unite(uint32_t a, uint32_t b)
+    {
+        if (height[b] > height[a])
+            std::swap(a, b);
+        link[b] = a;
+        if (height[a] == height[b])
+            ++height[a];
+        return a;
+    }
+};
 
 template <bool Join>
 MergeTree sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order_buffer,
-                const ProgressFn &progress, const SweepScratch &scratch)
+                const ProgressFn &progress, uint32_t *component)
 {
     const uint32_t n = static_cast<uint32_t>(order_buffer.size());
     MergeTree tree;
     tree.parent = UninitializedBuffer<uint32_t>(n);
     tree.children = UninitializedBuffer<uint8_t>(n);
-    // Union-find by rank (balanced, so finds stay short), plus the newest
-    // vertex of each component, which the next merge attaches to.
     const uint32_t *order = order_buffer.data();
     uint32_t *parent = tree.parent.data();
     uint8_t *children = tree.children.data();
-    uint32_t *u = scratch.uf;
-    uint32_t *newest = scratch.top;
-    uint8_t *h = scratch.height;
-    // A neighbour is lower (join) or higher (split) than the current vertex
-    // exactly when the sweep has already passed it: one bit per vertex says
-    // so.  The bits fit in cache where the values would not, which matters
-    // because consecutive vertices of the sweep lie anywhere in the volume.
+    const std::vector<LinkComponents> &link = link_components_table();
+    Components components;
+    // A neighbour is below the current vertex (above, for the split tree)
+    // exactly when the sweep has passed it: one bit per vertex says so.  The
+    // bits fit in cache where per-vertex words would not; which neighbours'
+    // components are needed then follows from the bits alone (one per piece
+    // of the lower link), so a step reads one or two words of `component`,
+    // mostly in the current vertex's own cache line.
     std::vector<uint64_t> swept((n + 63) / 64, 0);
     uint64_t *seen = swept.data();
     constexpr uint32_t kProgressStep = 1u << 20;
-    // The sweep order is known ahead: fetch the union-find entries around
-    // the vertex a few steps on, so that the misses of consecutive vertices
-    // overlap.
+    // The sweep order is known ahead: fetch what a vertex a few steps on
+    // will read, so that the misses of consecutive vertices overlap.
     constexpr uint32_t kAhead = 16;
     const int64_t row = grid.nx(), plane = grid.nx() * grid.ny();
     const auto prefetch = [&](uint32_t at) {
         const int64_t w = order[Join ? at : n - 1 - at];
+        __builtin_prefetch(component + w, 1);
+        __builtin_prefetch(children + w, 1);
         for (const int64_t p : {w - plane, w, w + plane})
-            for (const int64_t r : {p - row, p, p + row})
+            for (const int64_t r : {p - row, p + row})
                 if (r >= 0 && r < static_cast<int64_t>(n))
-                    __builtin_prefetch(u + r);
+                    __builtin_prefetch(seen + (r >> 6));
     };
 
     for (uint32_t step = 0; step < n; ++step) {
         if (step + kAhead < n)
             prefetch(step + kAhead);
         const uint32_t v = order[Join ? step : n - 1 - step];
-        uint32_t roots[14];
-        int count = 0;
-        grid.for_each(v, [&](int64_t neighbor) {
-            const uint32_t w = static_cast<uint32_t>(neighbor);
-            if (!((seen[w >> 6] >> (w & 63)) & 1u))
-                return;
-            const uint32_t c = find_root(u, w);
-            for (int i = 0; i < count; ++i)
-                if (roots[i] == c)
-                    return;
-            roots[count++] = c;
+        uint32_t below = 0;
+        grid.for_each_indexed(v, [&](std::size_t i, int64_t neighbor) {
+            const uint64_t w = static_cast<uint64_t>(neighbor);
+            below |= static_cast<uint32_t>((seen[w >> 6] >> (w & 63)) & 1u) << i;
         });
         seen[v >> 6] |= uint64_t{1} << (v & 63);
+        const LinkComponents &pieces = link[below];
+        uint32_t roots[6];
+        int count = 0;
+        for (int p = 0; p < pieces.count; ++p) {
+            const uint32_t r = components.find(component[v + grid.offset(pieces.first[p])]);
+            bool known = false;
+            for (int i = 0; i < count; ++i)
+                known |= roots[i] == r;
+            if (!known)
+                roots[count++] = r;
+        }
         children[v] = static_cast<uint8_t>(count);
-        uint32_t root = v;
+        uint32_t root;
         if (count == 0) {
-            u[v] = v;
-            h[v] = 0;
+            root = components.create(v);
         } else {
             root = roots[0];
-            parent[newest[root]] = v;
+            parent[components.newest[root]] = v;
             for (int i = 1; i < count; ++i) {
-                const uint32_t c = roots[i];
-                parent[newest[c]] = v;
-                if (h[c] > h[root]) {
-                    u[root] = c;
-                    root = c;
-                } else {
-                    u[c] = root;
-                    if (h[c] == h[root])
-                        ++h[root];
-                }
+                parent[components.newest[roots[i]]] = v;
+                root = components.unite(root, roots[i]);
             }
-            u[v] = root;
+            components.newest[root] = v;
         }
-        newest[root] = v;
+        component[v] = root;
         if (progress && (step & (kProgressStep - 1)) == kProgressStep - 1)
             progress(static_cast<double>(step) / n);
     }
@@ -101,39 +128,32 @@ MergeTree sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &
 }
 
 template <bool Join>
-MergeTree sweep_any(const GridNeighbors &grid, arbor_voxel_type type, const void *values,
-                    const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress,
-                    const SweepScratch *scratch)
+MergeTree sweep_any(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order,
+                    const ProgressFn &progress, const SweepScratch *scratch)
 {
-    UninitializedBuffer<uint32_t> uf, top;
-    UninitializedBuffer<uint8_t> height;
-    SweepScratch own{};
-    if (!scratch) {
-        uf = UninitializedBuffer<uint32_t>(order.size());
-        top = UninitializedBuffer<uint32_t>(order.size());
-        height = UninitializedBuffer<uint8_t>(order.size());
-        own = {uf.data(), top.data(), height.data()};
-        scratch = &own;
+    UninitializedBuffer<uint32_t> own;
+    uint32_t *component = scratch ? scratch->component : nullptr;
+    if (!component) {
+        own = UninitializedBuffer<uint32_t>(order.size());
+        component = own.data();
     }
-    (void)type;
-    (void)values;
-    return sweep<Join>(grid, order, progress, *scratch);
+    return sweep<Join>(grid, order, progress, component);
 }
 
 } // namespace
 
-MergeTree compute_join_tree(const GridNeighbors &grid, arbor_voxel_type type, const void *values,
+MergeTree compute_join_tree(const GridNeighbors &grid, arbor_voxel_type, const void *,
                             const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress,
                             const SweepScratch *scratch)
 {
-    return sweep_any<true>(grid, type, values, order, progress, scratch);
+    return sweep_any<true>(grid, order, progress, scratch);
 }
 
-MergeTree compute_split_tree(const GridNeighbors &grid, arbor_voxel_type type, const void *values,
+MergeTree compute_split_tree(const GridNeighbors &grid, arbor_voxel_type, const void *,
                              const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress,
                              const SweepScratch *scratch)
 {
-    return sweep_any<false>(grid, type, values, order, progress, scratch);
+    return sweep_any<false>(grid, order, progress, scratch);
 }
 
 } // namespace arbor::topology

@@ -6,13 +6,15 @@
 // sublevel set: a vertex with no lower neighbour starts a component (a
 // minimum), a vertex whose lower neighbours lie in two or more components
 // merges them (a join saddle).  The split tree does the same downwards with
-// superlevel sets.  Union-find keeps the most recently added vertex as the
-// root of each component, so attaching a component to the current vertex is
-// exactly the augmented tree's parent link.
+// superlevel sets.  Each component remembers its most recently added vertex,
+// so attaching a component to the current vertex is exactly the augmented
+// tree's parent link.
 //
-// Arrays are indexed by vertex id and "lower" is decided from the values
-// themselves (simulation of simplicity: value, then id), so a sweep touches
-// only the neighbourhood of the current vertex, which is close in memory.
+// Per vertex the sweep keeps a bit (swept yet?) and the component the vertex
+// joined.  The bits of the 14 neighbours say which pieces the lower link has
+// (link_components.hpp); the component of one neighbour per piece is read,
+// usually in the current vertex's own cache line, and union-find runs on
+// components, whose links stay in cache.
 #pragma once
 
 #include "grid_neighbors.hpp"
@@ -38,16 +40,14 @@ struct MergeTree {
     UninitializedBuffer<uint8_t> children;
 };
 
-// Work space of one sweep, one entry per vertex: union-find parents, the
-// newest vertex of each component, union-by-rank heights (9 bytes a vertex).
-// The pipeline lends the same memory to the merge afterwards, so it is
-// faulted in once.
+// Work space of one sweep: per vertex, the component it joined when the
+// sweep passed it (4 bytes a vertex, read only once written).  Union-find runs
+// on components, not vertices: there are as many as the tree has leaves, so
+// their links stay in cache and a find costs no memory round trip.
 struct SweepScratch {
-    uint32_t *uf;
-    uint32_t *top;
-    uint8_t *height;
+    uint32_t *component;
 };
-inline constexpr std::size_t kSweepScratchBytes = 9;
+inline constexpr std::size_t kSweepScratchBytes = 4;
 
 // The two sweeps over `values` (voxel type `type`) in the order `order`.
 // Without scratch, each sweep allocates its own.

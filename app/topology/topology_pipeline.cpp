@@ -62,19 +62,10 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
     result.timings.push_back({"sort", watch.lap()});
 
     // The two sweeps are independent: run the split tree on a second thread.
-    // Their work space is one block, which the merge reuses afterwards.
     const GridNeighbors grid(g.dims[0], g.dims[1], g.dims[2]);
-    static_assert(2 * kSweepScratchBytes >= kMergeWorkBytes);
-    const auto aligned = [](std::size_t bytes) { return (bytes + 63) / 64 * 64; };
-    const std::size_t words = aligned(4 * std::size_t{n}), bytes = aligned(n);
-    UninitializedBuffer<uint8_t> scratch(2 * (2 * words + bytes));
-    uint8_t *base = scratch.data();
-    const auto carve = [&](std::size_t at) {
-        return SweepScratch{reinterpret_cast<uint32_t *>(base + at), reinterpret_cast<uint32_t *>(base + at + words),
-                            base + at + 2 * words};
-    };
-    const SweepScratch join_scratch = carve(0);
-    const SweepScratch split_scratch = carve(2 * words + bytes);
+    UninitializedBuffer<uint32_t> join_components(n), split_components(n);
+    const SweepScratch join_scratch{join_components.data()};
+    const SweepScratch split_scratch{split_components.data()};
     MergeTree join, split;
     std::exception_ptr split_error;
     std::thread split_thread([&] {
@@ -95,9 +86,10 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
     if (split_error)
         std::rethrow_exception(split_error);
     result.timings.push_back({"join+split trees", watch.lap()});
+    join_components.release();
+    split_components.release();
 
-    result.tree = merge_contour_tree(std::move(join), std::move(split), std::move(order), report("merging trees"),
-                                     std::move(scratch));
+    result.tree = merge_contour_tree(std::move(join), std::move(split), std::move(order), report("merging trees"));
     result.timings.push_back({"merge", watch.lap()});
 
     result.total_seconds = total.lap();
