@@ -79,7 +79,7 @@ MergeTree sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &
         __builtin_prefetch(component + w, 1);
         __builtin_prefetch(children + w, 1);
         for (const int64_t p : {w - plane, w, w + plane})
-            for (const int64_t r : {p - row, p + row})
+            for (const int64_t r : {p - row, p, p + row})
                 if (r >= 0 && r < static_cast<int64_t>(n))
                     __builtin_prefetch(seen + (r >> 6));
     };
@@ -142,16 +142,14 @@ MergeTree sweep_any(const GridNeighbors &grid, const UninitializedBuffer<uint32_
 
 } // namespace
 
-MergeTree compute_join_tree(const GridNeighbors &grid, arbor_voxel_type, const void *,
-                            const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress,
-                            const SweepScratch *scratch)
+MergeTree compute_join_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order,
+                            const ProgressFn &progress, const SweepScratch *scratch)
 {
     return sweep_any<true>(grid, order, progress, scratch);
 }
 
-MergeTree compute_split_tree(const GridNeighbors &grid, arbor_voxel_type, const void *,
-                             const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress,
-                             const SweepScratch *scratch)
+MergeTree compute_split_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order,
+                             const ProgressFn &progress, const SweepScratch *scratch)
 {
     return sweep_any<false>(grid, order, progress, scratch);
 }

@@ -21,7 +21,6 @@
 #include "uninitialized_buffer.hpp"
 #include "vertex_order.hpp"
 
-#include <arbor/volume.h>
 
 #include <cstdint>
 
@@ -49,13 +48,12 @@ struct SweepScratch {
 };
 inline constexpr std::size_t kSweepScratchBytes = 4;
 
-// The two sweeps over `values` (voxel type `type`) in the order `order`.
-// Without scratch, each sweep allocates its own.
-MergeTree compute_join_tree(const GridNeighbors &grid, arbor_voxel_type type, const void *values,
-                            const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress = {},
-                            const SweepScratch *scratch = nullptr);
-MergeTree compute_split_tree(const GridNeighbors &grid, arbor_voxel_type type, const void *values,
-                             const UninitializedBuffer<uint32_t> &order, const ProgressFn &progress = {},
-                             const SweepScratch *scratch = nullptr);
+// The two sweeps of the grid's vertices in the order `order` (sort_vertices:
+// the order is all they need of the values).  Without scratch, each sweep
+// allocates its own.
+MergeTree compute_join_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order,
+                            const ProgressFn &progress = {}, const SweepScratch *scratch = nullptr);
+MergeTree compute_split_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order,
+                             const ProgressFn &progress = {}, const SweepScratch *scratch = nullptr);
 
 } // namespace arbor::topology

@@ -70,13 +70,13 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
     std::exception_ptr split_error;
     std::thread split_thread([&] {
         try {
-            split = compute_split_tree(grid, volume.type(), volume.data(), order, poll, &split_scratch);
+            split = compute_split_tree(grid, order, poll, &split_scratch);
         } catch (...) {
             split_error = std::current_exception();
         }
     });
     try {
-        join = compute_join_tree(grid, volume.type(), volume.data(), order, report("join and split trees"),
+        join = compute_join_tree(grid, order, report("join and split trees"),
                                  &join_scratch);
     } catch (...) {
         split_thread.join();

@@ -448,8 +448,8 @@ inline topology::ContourTree staged_contour_tree(const Volume &volume)
     const uint32_t n = static_cast<uint32_t>(volume.voxel_count());
     UninitializedBuffer<uint32_t> order = sort_vertices(volume.type(), volume.data(), n);
     const GridNeighbors grid(g.dims[0], g.dims[1], g.dims[2]);
-    MergeTree join = compute_join_tree(grid, volume.type(), volume.data(), order);
-    MergeTree split = compute_split_tree(grid, volume.type(), volume.data(), order);
+    MergeTree join = compute_join_tree(grid, order);
+    MergeTree split = compute_split_tree(grid, order);
     return merge_contour_tree(std::move(join), std::move(split), std::move(order));
 }
 
