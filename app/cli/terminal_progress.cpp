@@ -16,12 +16,15 @@ void TerminalProgress::report(const std::string &stage, double fraction)
         return;
     std::lock_guard lock(mutex_);
     const auto now = std::chrono::steady_clock::now();
+    const std::optional<double> left =
+        clock_.observe(stage, fraction, std::chrono::duration<double>(now.time_since_epoch()).count());
     if (shown_ && fraction < 1.0 && now - last_ < std::chrono::milliseconds(100))
         return;
     last_ = now;
     shown_ = true;
-    std::fprintf(stderr, "\r\033[K  %s %3d%%", stage.empty() ? "working" : stage.c_str(),
-                 static_cast<int>(fraction * 100.0 + 0.5));
+    std::fprintf(stderr, "\r\033[K  %s %3d%%%s%s", stage.empty() ? "working" : stage.c_str(),
+                 static_cast<int>(fraction * 100.0 + 0.5), left ? ", " : "",
+                 left ? pipeline::format_time_left(*left).c_str() : "");
     std::fflush(stderr);
 }
 

@@ -1,9 +1,11 @@
 // terminal_progress.hpp - progress of long plugin calls on the terminal:
-// one self-overwriting line on stderr, at most ten updates a second, and
-// nothing at all when stderr is not a terminal (logs and CI stay clean).
+// one self-overwriting line on stderr, at most ten updates a second, with
+// the time the stage has left once it can be told, and nothing at all when
+// stderr is not a terminal (logs and CI stay clean).
 #pragma once
 
 #include "host/host_services.hpp"
+#include "pipeline/time_left.hpp"
 
 #include <chrono>
 #include <mutex>
@@ -22,6 +24,7 @@ private:
     bool enabled_;
     bool shown_ = false;
     std::chrono::steady_clock::time_point last_;
+    pipeline::StageClock clock_;
 };
 
 } // namespace arbor::cli

@@ -97,7 +97,7 @@ std::string choose_importer(const PluginRegistry &registry, const fs::path &path
 }
 
 Volume import_volume(PluginInstance &importer, const fs::path &path, ProgressSink *progress,
-                     uint64_t max_bytes, std::stop_token stop)
+                     uint64_t max_bytes, std::stop_token stop, const HeaderAdmission &admit)
 {
     const auto &table = importer.interface<arbor_importer_v1>(ARBOR_INTERFACE_IMPORTER);
     arbor_volume header{};
@@ -107,7 +107,9 @@ Volume import_volume(PluginInstance &importer, const fs::path &path, ProgressSin
         importer.check(table.read_header(importer.get(), path.c_str(), task.get(), &header),
                        "reading the header of " + path.string());
     }
-    const std::string problem = check_volume_header(header, max_bytes);
+    std::string problem = check_volume_header(header, max_bytes);
+    if (problem.empty() && admit)
+        problem = admit(header);
     if (!problem.empty())
         throw std::runtime_error(path.string() + ": " + problem);
     Volume volume;

@@ -12,6 +12,7 @@
 #include "../core/volume.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,9 +31,15 @@ std::vector<ImporterChoice> rank_importers(const PluginRegistry &registry,
 // tried when no importer recognises it.
 std::string choose_importer(const PluginRegistry &registry, const std::filesystem::path &path);
 
+// What the caller says of a header before the voxels are allocated: "" to
+// go on, otherwise why not (the run this volume is for would not fit).
+using HeaderAdmission = std::function<std::string(const arbor_volume &header)>;
+
 // Reads the volume with an instance whose parameters are already set.
-// Throws PluginError / std::runtime_error with a message naming the file.
+// Throws PluginError / std::runtime_error with a message naming the file;
+// `admit` sees the checked header before anything is allocated.
 Volume import_volume(PluginInstance &importer, const std::filesystem::path &path,
-                     ProgressSink *progress, uint64_t max_bytes, std::stop_token stop = {});
+                     ProgressSink *progress, uint64_t max_bytes, std::stop_token stop = {},
+                     const HeaderAdmission &admit = {});
 
 } // namespace arbor

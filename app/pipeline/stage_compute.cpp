@@ -1,6 +1,7 @@
 #include "stage_compute.hpp"
 
 #include "branch_style.hpp"
+#include "memory_plan.hpp"
 
 #include "render_scene.hpp"
 #include "transfer_function_file.hpp"
@@ -73,7 +74,8 @@ std::shared_ptr<const void> import(StageContext &c)
         PluginSlot::Lease importer = c.plugins.lease(setting, &c.job);
         require_parameters(*importer, setting);
         r->volume = std::make_shared<const Volume>(
-            import_volume(*importer, local, &c.job, c.options.max_volume_bytes, c.stop()));
+            import_volume(*importer, local, &c.job, c.options.max_volume_bytes, c.stop(),
+                          [&c](const arbor_volume &header) { return admit_volume(header, c.document); }));
         r->source = in.path.string();
         r->importer = {setting.id, importer->descriptor().version, read_params(*importer)};
     }
@@ -161,6 +163,7 @@ std::shared_ptr<const void> contour_tree(StageContext &c)
         if (why.rfind("unusable", 0) == 0)
             c.job.write(ARBOR_LOG_WARNING, "contour-tree cache", why + "; computing the tree again");
     }
+    require_tree_memory(volume);
     topology::TopologyResult t = topology::compute_contour_tree(
         volume, [&c](const char *stage, double f) { c.job.report(stage, f); }, c.stop());
     c.job.finish();

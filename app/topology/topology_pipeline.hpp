@@ -32,6 +32,14 @@ struct TopologyResult {
 // cancel.  Called on the calling thread only.
 using StageProgressFn = std::function<void(const char *stage, double fraction)>;
 
+// Work space compute_contour_tree needs at its peak, beyond the volume
+// itself: the merge's, with the vertex order (4 bytes a voxel), both merge
+// trees (5 + 5) and the merge state (16), plus about 1 byte a voxel for the
+// nodes and arcs of a noisy CT's tree (a node per 20 voxels).  Callers check
+// it against the memory available before they start.
+inline constexpr uint64_t kContourTreeWorkBytesPerVoxel = 31;
+inline uint64_t contour_tree_work_bytes(uint64_t voxels) { return voxels * kContourTreeWorkBytesPerVoxel; }
+
 // The contour tree alone (result.branches left empty).  Throws
 // std::invalid_argument for volumes with NaN or infinite values (naming how
 // many and where) and for empty volumes.  A stop request on `stop` is seen

@@ -785,6 +785,31 @@ class Run(unittest.TestCase):
         self.assertNotEqual(code, 0)
         self.assertIn("regenerate them with `arbor tf`", err)
 
+    def test_a_volume_too_large_for_the_memory_is_refused_with_what_it_needs(self):
+        """The figures follow from the dimensions: bonsai is 256^3 u8; a run
+        keeps the voxels, a filtered copy and 8 B/voxel, and the tree works
+        in 31 B/voxel."""
+        voxels = 256 ** 3
+        volume = DATA / "bonsai/bonsai.vti"
+        out = SCRATCH / "too-large.png"
+        # At the header, before the voxels are read.
+        code, _, err = arbor("run", volume, "--no-cache", "-o", out,
+                             env={"ARBOR_MEMORY_AVAILABLE": "100000000"}, check=False)
+        self.assertEqual(code, 1, err)
+        self.assertIn(f"needs about {voxels * 10 / 1e6:.1f} MB", err)
+        self.assertIn("and 100.0 MB of memory is available", err)
+        self.assertIn(f"contour tree, which needs {voxels * 31 / 1e6:.1f} MB more", err)
+        # Unfiltered, the voxels fit; the tree's work space does not.
+        code, _, err = arbor("run", volume, "--no-cache", "--filter", "none", "-o", out,
+                             env={"ARBOR_MEMORY_AVAILABLE": "300000000"}, check=False)
+        self.assertEqual(code, 1, err)
+        self.assertIn(f"the contour tree of 256 x 256 x 256 voxels needs about {voxels * 31 / 1e6:.1f} MB", err)
+        self.assertFalse(out.exists())
+        # With room for both, the same run goes through.
+        arbor("run", volume, "--no-cache", "--filter", "none", "--width", 64, "--height", 64, "-o", out,
+              env={"ARBOR_MEMORY_AVAILABLE": str(voxels * 40)})
+        self.assertTrue(out.exists())
+
     def test_bad_inputs_are_refused_clearly(self):
         cases = [
             (("--phantom", "head", "-o", SCRATCH / "x.jpg"), "written as .png or .exr"),

@@ -1,0 +1,70 @@
+#include "available_memory.hpp"
+
+#include "volume_header.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+namespace arbor {
+
+namespace {
+
+// A positive integer from a whole file ("max" and anything else: 0).
+uint64_t file_number(const char *path)
+{
+    std::ifstream in(path);
+    std::string text;
+    if (!(in >> text) || text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+        return 0;
+    return std::strtoull(text.c_str(), nullptr, 10);
+}
+
+uint64_t meminfo_available()
+{
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    while (meminfo >> key) {
+        if (key == "MemAvailable:") {
+            uint64_t kb = 0;
+            meminfo >> kb;
+            return kb * 1024;
+        }
+        std::getline(meminfo, key);
+    }
+    return 0;
+}
+
+} // namespace
+
+uint64_t available_memory_bytes()
+{
+    if (const char *env = std::getenv("ARBOR_MEMORY_AVAILABLE")) {
+        char *end = nullptr;
+        const unsigned long long v = std::strtoull(env, &end, 10);
+        if (end && end != env && *end == '\0')
+            return v;
+    }
+    uint64_t available = meminfo_available();
+    // The cgroup this process is in (containers, systemd slices): its limit
+    // less what the group already uses.
+    const uint64_t limit = file_number("/sys/fs/cgroup/memory.max");
+    if (limit > 0) {
+        const uint64_t used = file_number("/sys/fs/cgroup/memory.current");
+        const uint64_t left = limit > used ? limit - used : 0;
+        available = available == 0 ? left : std::min(available, left);
+    }
+    return available;
+}
+
+std::string check_memory(uint64_t needed, const std::string &what, const std::string &detail)
+{
+    const uint64_t available = available_memory_bytes();
+    if (available == 0 || needed <= available)
+        return "";
+    return what + " needs about " + format_bytes(needed) + (detail.empty() ? "" : " (" + detail + ")") +
+           ", and " + format_bytes(available) + " of memory is available";
+}
+
+} // namespace arbor
