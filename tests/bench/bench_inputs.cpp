@@ -74,6 +74,10 @@ std::vector<BenchInput> all_inputs(const CatalogueOptions &options)
         in.file = options.data_dir / v.file;
         inputs.push_back(in);
     }
+    BenchInput stacked = named("ct_head_stacked300", 512);
+    stacked.file = options.data_dir / "dicom_ct_head_0051";
+    stacked.stacked_slices = 300;
+    inputs.push_back(stacked);
     for (int64_t n : options.synthetic_sizes)
         for (SyntheticKind kind : {SyntheticKind::Blobs, SyntheticKind::BlobsNoise, SyntheticKind::Random}) {
             const SyntheticField field{kind, n};

@@ -1,6 +1,8 @@
 // bench_inputs.hpp - what the topology benchmark runs on: the built-in head
 // phantom (clean and noisy), the shared real volumes that have a TTK anchor or
-// reference pairs, and the synthetic fields of the TTK anchor.
+// reference pairs, the shared CT head DICOM stacked to 512 x 512 x 300 (a
+// chest CT's size: no TTK anchor, TTK cannot build it in 20 GB), and the
+// synthetic fields of the TTK anchor.
 #pragma once
 
 #include "synthetic_cache.hpp"
@@ -21,6 +23,10 @@ struct BenchInput {
     std::filesystem::path file;               // a shared real volume
     std::optional<SyntheticField> synthetic;  // a generated field
     std::optional<io::PhantomOptions> phantom;    // the head phantom
+    // > 0: the file's slices stacked to this many, mirrored at each end
+    // (0..n-1, n-1..0, 0..), so a real scan's noise and anatomy reach the
+    // size of a chest or whole-body CT without resampling smoothing them.
+    int64_t stacked_slices = 0;
 };
 
 struct CatalogueOptions {

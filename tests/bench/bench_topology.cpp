@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -33,7 +34,40 @@ struct Options {
     double phantom_noise = 8.0;
     int phantom_blobs = 20;
     bool list = false;
+    std::vector<int> cores; // empty: no pinning, one run per input
 };
+
+// Per input, the fastest total and stages at each core count, and the
+// speed-up over the first count (normally 1).
+void print_scaling(const std::vector<int> &cores, const std::vector<std::pair<std::string, std::vector<RunReport>>> &runs)
+{
+    std::cout << "\ncore scaling: seconds of the fastest run pinned to N cores (sched_setaffinity); speed-up = "
+              << cores.front() << "-core time / N-core time, total and per stage ("
+              << kStageNames[0] << ", " << kStageNames[1] << ", " << kStageNames[2] << ", " << kStageNames[3] << ")\n";
+    std::printf("%-22s", "input");
+    for (const int c : cores)
+        std::printf(" %8s", (std::to_string(c) + (c == 1 ? " core" : " cores")).c_str());
+    for (std::size_t i = 1; i < cores.size(); ++i)
+        std::printf("  speed-up %dc: total (stages)", cores[i]);
+    std::printf("\n");
+    for (const auto &[name, reports] : runs) {
+        std::printf("%-22s", name.c_str());
+        for (const RunReport &r : reports)
+            r.ok ? std::printf(" %8.2f", r.total_seconds) : std::printf(" %8s", "failed");
+        for (std::size_t i = 1; i < reports.size(); ++i) {
+            const RunReport &a = reports.front(), &b = reports[i];
+            if (!a.ok || !b.ok) {
+                std::printf("  -");
+                continue;
+            }
+            std::printf("  %.2fx (", a.total_seconds / b.total_seconds);
+            for (std::size_t s = 0; s < kStageNames.size(); ++s)
+                std::printf("%s%.2f", s ? " " : "", a.stage_seconds[s] / b.stage_seconds[s]);
+            std::printf(")");
+        }
+        std::printf("\n");
+    }
+}
 
 void print_preamble(const Options &o, const fs::path &timings, std::size_t inputs)
 {
@@ -61,6 +95,10 @@ int main(int argc, char **argv)
     app.add_option("--phantom-noise", o.phantom_noise, "Noise sigma of the noisy phantoms");
     app.add_option("--phantom-blobs", o.phantom_blobs, "Blobs in the noisy phantoms");
     app.add_flag("--list", o.list, "List the selected inputs and exit");
+    app.add_option("--cores", o.cores,
+                   "Run every input pinned to each of these core counts (e.g. --cores 1 2) and print the "
+                   "speed-up; the main table shows the last count")
+        ->check(CLI::Range(1, 1024));
     CLI11_PARSE(app, argc, argv);
 
     CatalogueOptions catalogue;
@@ -109,14 +147,21 @@ int main(int argc, char **argv)
     print_preamble(o, timings_file, inputs.size());
     print_header(std::cout);
     std::vector<TableRow> rows;
+    std::vector<std::pair<std::string, std::vector<RunReport>>> scaling;
     for (const BenchInput &in : inputs) {
         const fs::path file = files[in.name];
         const VolumeLoader load = [&in, file, &o] { return load_input(in, file, o.plugins); };
-        TableRow row{in.name, run_in_child(load, o.repeat), choose_ttk_anchor(timings, in.name)};
+        std::vector<RunReport> reports;
+        for (const int c : o.cores.empty() ? std::vector<int>{0} : o.cores)
+            reports.push_back(run_in_child(load, o.repeat, c));
+        TableRow row{in.name, reports.back(), choose_ttk_anchor(timings, in.name)};
         print_row(std::cout, row);
         rows.push_back(std::move(row));
+        scaling.emplace_back(in.name, std::move(reports));
     }
     print_anchor_notes(std::cout, rows);
+    if (o.cores.size() > 1)
+        print_scaling(o.cores, scaling);
     print_summary(std::cout, rows);
     const bool all_ok = std::all_of(rows.begin(), rows.end(), [](const TableRow &r) { return r.run.ok; });
     return all_ok ? 0 : 1;

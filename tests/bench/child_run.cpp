@@ -12,10 +12,12 @@
 #include <cstring>
 #include <iostream>
 #include <limits>
+#include <stdexcept>
 #include <type_traits>
 #include <utility>
 
 #include <malloc.h>
+#include <sched.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -118,10 +120,33 @@ std::size_t read_all(int fd, void *data, std::size_t size)
     return got;
 }
 
-[[noreturn]] void child_main(int fd, const VolumeLoader &load, int repeats)
+// The first `cores` CPUs of the set this process may use.
+void pin_to_cores(int cores)
+{
+    cpu_set_t allowed;
+    CPU_ZERO(&allowed);
+    if (sched_getaffinity(0, sizeof allowed, &allowed) != 0)
+        throw std::runtime_error(std::string("sched_getaffinity: ") + std::strerror(errno));
+    if (CPU_COUNT(&allowed) < cores)
+        throw std::runtime_error(std::to_string(cores) + " cores asked, " + std::to_string(CPU_COUNT(&allowed)) +
+                                 " available");
+    cpu_set_t chosen;
+    CPU_ZERO(&chosen);
+    for (int cpu = 0, taken = 0; cpu < CPU_SETSIZE && taken < cores; ++cpu)
+        if (CPU_ISSET(cpu, &allowed)) {
+            CPU_SET(cpu, &chosen);
+            ++taken;
+        }
+    if (sched_setaffinity(0, sizeof chosen, &chosen) != 0)
+        throw std::runtime_error(std::string("sched_setaffinity: ") + std::strerror(errno));
+}
+
+[[noreturn]] void child_main(int fd, const VolumeLoader &load, int repeats, int cores)
 {
     WireReport out{};
     try {
+        if (cores > 0)
+            pin_to_cores(cores);
         measure(load, repeats, out);
     } catch (const std::exception &e) {
         std::snprintf(out.error, sizeof out.error, "%s", e.what());
@@ -163,7 +188,7 @@ RunReport from_wire(const WireReport &w)
 
 } // namespace
 
-RunReport run_in_child(const VolumeLoader &load, int repeats)
+RunReport run_in_child(const VolumeLoader &load, int repeats, int cores)
 {
     int fds[2];
     if (pipe(fds) != 0)
@@ -179,7 +204,7 @@ RunReport run_in_child(const VolumeLoader &load, int repeats)
     }
     if (pid == 0) {
         close(fds[0]);
-        child_main(fds[1], load, repeats);
+        child_main(fds[1], load, repeats, cores);
     }
     close(fds[1]);
     WireReport wire{};

@@ -1,6 +1,6 @@
 // child_run.hpp - one input's measurement in a child process.
 //
-// The child loads the volume (not timed), resets the peak resident size, and
+// The child (pinned to `cores` CPUs when asked) loads the volume (not timed), resets the peak resident size, and
 // runs the topology pipeline `repeats` times.  A fresh process per input makes
 // the peak memory that input's alone (no heap kept from earlier inputs) and
 // turns a crash or an out-of-memory kill into one failed row instead of the
@@ -42,6 +42,8 @@ struct RunReport {
 
 using VolumeLoader = std::function<Volume()>;
 
-RunReport run_in_child(const VolumeLoader &load, int repeats);
+// `cores` > 0 pins the child to that many of the CPUs it may run on (the
+// lowest-numbered), before it loads anything: threads beyond them share them.
+RunReport run_in_child(const VolumeLoader &load, int repeats, int cores = 0);
 
 } // namespace arbor::bench
