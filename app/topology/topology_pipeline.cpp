@@ -63,9 +63,14 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
 
     // The two sweeps are independent: run the split tree on a second thread.
     const GridNeighbors grid(g.dims[0], g.dims[1], g.dims[2]);
-    UninitializedBuffer<uint32_t> join_components(n), split_components(n);
-    const SweepScratch join_scratch{join_components.data()};
-    const SweepScratch split_scratch{split_components.data()};
+    // One block serves the sweeps' components (4 + 4 bytes a vertex) and then
+    // the merge's state (16): memory touched for the first time costs more
+    // than the sweeps' arithmetic on a virtual machine, so it is touched once.
+    static_assert(2 * kSweepScratchBytes <= kMergeWorkBytes);
+    UninitializedBuffer<uint8_t> work(std::size_t{n} * kMergeWorkBytes);
+    uint32_t *const components = reinterpret_cast<uint32_t *>(work.data());
+    const SweepScratch join_scratch{components};
+    const SweepScratch split_scratch{components + n};
     MergeTree join, split;
     std::exception_ptr split_error;
     std::thread split_thread([&] {
@@ -86,10 +91,8 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
     if (split_error)
         std::rethrow_exception(split_error);
     result.timings.push_back({"join+split trees", watch.lap()});
-    join_components.release();
-    split_components.release();
-
-    result.tree = merge_contour_tree(std::move(join), std::move(split), std::move(order), report("merging trees"));
+    result.tree = merge_contour_tree(std::move(join), std::move(split), std::move(order), report("merging trees"),
+                                     std::move(work));
     result.timings.push_back({"merge", watch.lap()});
 
     result.total_seconds = total.lap();
