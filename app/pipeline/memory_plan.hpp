@@ -22,7 +22,8 @@ namespace arbor::pipeline {
 std::string admit_volume(const arbor_volume &header, const Document &document);
 
 // Before the contour tree is computed: throws std::runtime_error naming
-// what the tree of `volume` needs and what is available when it does not fit.
+// what the tree of `volume` needs at the least (its sweeps one after the
+// other) and what is available when it does not fit.
 void require_tree_memory(const Volume &volume);
 
 } // namespace arbor::pipeline

@@ -7,6 +7,7 @@
 #include "transfer_function_file.hpp"
 #include "tree_cache.hpp"
 
+#include "core/available_memory.hpp"
 #include "core/cancelled.hpp"
 #include "core/stopwatch.hpp"
 #include "host/filter_run.hpp"
@@ -165,7 +166,7 @@ std::shared_ptr<const void> contour_tree(StageContext &c)
     }
     require_tree_memory(volume);
     topology::TopologyResult t = topology::compute_contour_tree(
-        volume, [&c](const char *stage, double f) { c.job.report(stage, f); }, c.stop());
+        volume, [&c](const char *stage, double f) { c.job.report(stage, f); }, c.stop(), available_memory_bytes());
     c.job.finish();
     r->tree = std::move(t.tree);
     r->timings = std::move(t.timings);

@@ -34,19 +34,8 @@ HugeVector<uint32_t> arc_interior_voxels(const ContourTree &tree)
 
 namespace {
 
-// What the merge keeps per vertex, packed into 16 bytes so that one cache
-// line serves every access to a vertex: the two trees' links and degrees,
-// the contour-tree arc being built, and the contour-tree degrees so far.
-struct VertexState {
-    uint32_t jt_up;
-    uint32_t st_down;
-    uint32_t label;
-    uint8_t jt_deg; // kRemoved once the vertex has left the trees
-    uint8_t st_deg;
-    uint8_t cnt_up;
-    uint8_t cnt_down;
-};
-static_assert(sizeof(VertexState) == kMergeWorkBytes);
+// The sweeps' output and the merge's work space (merge_tree.hpp).
+using VertexState = MergeVertex;
 constexpr uint8_t kRemoved = 0xff;
 
 // Leaf pruning on the two augmented trees (Carr, Snoeyink, Axen).  A vertex is
@@ -242,27 +231,25 @@ NodeKind kind_of(uint8_t up, uint8_t down)
 
 } // namespace
 
-ContourTree merge_contour_tree(MergeTree join, MergeTree split, UninitializedBuffer<uint32_t> order,
-                               const ProgressFn &progress, UninitializedBuffer<uint8_t> work)
+ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, UninitializedBuffer<uint32_t> order,
+                               const ProgressFn &progress)
 {
-    const uint32_t n = static_cast<uint32_t>(join.parent.size());
+    const uint32_t n = static_cast<uint32_t>(merge_state.size());
     ContourTree ct;
     if (n == 0)
         return ct;
-    if (split.parent.size() != n || order.size() != n)
-        throw std::invalid_argument("merge_contour_tree: the trees and the vertex order differ in size");
-    if (work.size() < std::size_t{n} * kMergeWorkBytes)
-        work = UninitializedBuffer<uint8_t>(std::size_t{n} * kMergeWorkBytes);
-    VertexState *state = reinterpret_cast<VertexState *>(work.data());
+    if (order.size() != n)
+        throw std::invalid_argument("merge_contour_tree: the merge state and the vertex order differ in size");
+    VertexState *state = merge_state.data();
     // The contour tree's down-degrees are the join tree's, its up-degrees
     // the split tree's: its nodes are known before the merge.
     std::size_t node_count = 0;
     for (uint32_t v = 0; v < n; ++v) {
-        state[v] = {join.parent[v], split.parent[v], 0, join.children[v], split.children[v], 0, 0};
-        node_count += join.children[v] != 1 || split.children[v] != 1;
+        VertexState &s = state[v];
+        s.label = 0;
+        s.cnt_up = s.cnt_down = 0;
+        node_count += s.jt_deg != 1 || s.st_deg != 1;
     }
-    split = MergeTree{};
-    join.children.release();
 
     LeafPruning pruning(state, n, node_count);
     pruning.run(progress, order.data());
@@ -325,11 +312,11 @@ ContourTree merge_contour_tree(MergeTree join, MergeTree split, UninitializedBuf
         compact[dropped] = compact[kept];
     arcs = {};
 
-    // Augmentation, into the join tree's parent array (no longer needed).
-    ct.vertex_arc = std::move(join.parent);
+    // Augmentation (the order is gone by now: the peak stays the state's).
+    ct.vertex_arc = UninitializedBuffer<uint32_t>(n);
     for (uint32_t v = 0; v < n; ++v)
         ct.vertex_arc[v] = compact.empty() ? kNoArc : compact[state[v].label];
-    work.release();
+    merge_state.release();
     compact = {};
 
     // Incidence lists.

@@ -57,16 +57,13 @@ struct ContourTree {
 // the arc, less the nodes (which are counted on their own).
 HugeVector<uint32_t> arc_interior_voxels(const ContourTree &tree);
 
-// Bytes per vertex the merge needs as work space.
-inline constexpr std::size_t kMergeWorkBytes = 16;
-
-// Merges the two trees.  It consumes its inputs and frees each as soon as it
-// is done with it: the join tree's parent array becomes vertex_arc; `order`,
-// the vertices lowest first (sort_vertices), lets the merge stream through
-// the vertices instead of chasing links and lists the nodes in order; `work`,
-// when it holds at least kMergeWorkBytes per vertex, is used instead of a
-// fresh allocation (the pipeline lends the sweeps' scratch).
-ContourTree merge_contour_tree(MergeTree join, MergeTree split, UninitializedBuffer<uint32_t> order,
-                               const ProgressFn &progress = {}, UninitializedBuffer<uint8_t> work = {});
+// Merges the two trees the sweeps left in `state` (jt_up, st_down and the
+// degrees of every vertex; see merge_tree.hpp), consuming it and the order:
+// `order`, the vertices lowest first (sort_vertices), lets the merge stream
+// through the vertices instead of chasing links and lists the nodes in
+// order.  Work space beyond them: the tree itself and vertex_arc (4 bytes a
+// vertex, allocated once the order is freed).
+ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> state, UninitializedBuffer<uint32_t> order,
+                               const ProgressFn &progress = {});
 
 } // namespace arbor::topology

@@ -48,25 +48,31 @@ struct Components {
     }
 };
 
-template <bool Join>
-MergeTree sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order_buffer,
-                const ProgressFn &progress, uint32_t *component)
+// Where a sweep keeps the component of each vertex: in the merge state's
+// label (join sweep, or a split sweep on its own) or in an array of its own.
+struct ComponentInState {
+    MergeVertex *state;
+    uint32_t &operator[](std::size_t v) const { return state[v].label; }
+};
+struct ComponentInArray {
+    uint32_t *component;
+    uint32_t &operator[](std::size_t v) const { return component[v]; }
+};
+
+template <bool Join, class ComponentOf>
+void sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order_buffer, MergeVertex *state,
+           ComponentOf component, const ProgressFn &progress)
 {
     const uint32_t n = static_cast<uint32_t>(order_buffer.size());
-    MergeTree tree;
-    tree.parent = UninitializedBuffer<uint32_t>(n);
-    tree.children = UninitializedBuffer<uint8_t>(n);
     const uint32_t *order = order_buffer.data();
-    uint32_t *parent = tree.parent.data();
-    uint8_t *children = tree.children.data();
     const std::vector<LinkComponents> &link = link_components_table();
     Components components;
     // A neighbour is below the current vertex (above, for the split tree)
     // exactly when the sweep has passed it: one bit per vertex says so.  The
     // bits fit in cache where per-vertex words would not; which neighbours'
     // components are needed then follows from the bits alone (one per piece
-    // of the lower link), so a step reads one or two words of `component`,
-    // mostly in the current vertex's own cache line.
+    // of the lower link), so a step reads one or two component words, mostly
+    // in the current vertex's own cache line.
     std::vector<uint64_t> swept((n + 63) / 64, 0);
     uint64_t *seen = swept.data();
     constexpr uint32_t kProgressStep = 1u << 20;
@@ -76,8 +82,8 @@ MergeTree sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &
     const int64_t row = grid.nx(), plane = grid.nx() * grid.ny();
     const auto prefetch = [&](uint32_t at) {
         const int64_t w = order[Join ? at : n - 1 - at];
-        __builtin_prefetch(component + w, 1);
-        __builtin_prefetch(children + w, 1);
+        __builtin_prefetch(&component[w], 1);
+        __builtin_prefetch(&state[w], 1);
         for (const int64_t p : {w - plane, w, w + plane})
             for (const int64_t r : {p - row, p, p + row})
                 if (r >= 0 && r < static_cast<int64_t>(n))
@@ -105,16 +111,17 @@ MergeTree sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &
             if (!known)
                 roots[count++] = r;
         }
-        children[v] = static_cast<uint8_t>(count);
+        (Join ? state[v].jt_deg : state[v].st_deg) = static_cast<uint8_t>(count);
         uint32_t root;
         if (count == 0) {
             root = components.create(v);
         } else {
             root = roots[0];
-            parent[components.newest[root]] = v;
-            for (int i = 1; i < count; ++i) {
-                parent[components.newest[roots[i]]] = v;
-                root = components.unite(root, roots[i]);
+            for (int i = 0; i < count; ++i) {
+                MergeVertex &joined = state[components.newest[roots[i]]];
+                (Join ? joined.jt_up : joined.st_down) = v;
+                if (i > 0)
+                    root = components.unite(root, roots[i]);
             }
             components.newest[root] = v;
         }
@@ -122,36 +129,30 @@ MergeTree sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &
         if (progress && (step & (kProgressStep - 1)) == kProgressStep - 1)
             progress(static_cast<double>(step) / n);
     }
-    if (n > 0)
-        parent[order[Join ? n - 1 : 0]] = kNoVertex;
-    return tree;
-}
-
-template <bool Join>
-MergeTree sweep_any(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order,
-                    const ProgressFn &progress, const SweepScratch *scratch)
-{
-    UninitializedBuffer<uint32_t> own;
-    uint32_t *component = scratch ? scratch->component : nullptr;
-    if (!component) {
-        own = UninitializedBuffer<uint32_t>(order.size());
-        component = own.data();
+    if (n > 0) {
+        MergeVertex &last = state[order[Join ? n - 1 : 0]];
+        (Join ? last.jt_up : last.st_down) = kNoVertex;
     }
-    return sweep<Join>(grid, order, progress, component);
 }
 
 } // namespace
 
-MergeTree compute_join_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order,
-                            const ProgressFn &progress, const SweepScratch *scratch)
+void compute_join_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order, MergeVertex *state,
+                       uint32_t *component, const ProgressFn &progress)
 {
-    return sweep_any<true>(grid, order, progress, scratch);
+    if (component)
+        sweep<true>(grid, order, state, ComponentInArray{component}, progress);
+    else
+        sweep<true>(grid, order, state, ComponentInState{state}, progress);
 }
 
-MergeTree compute_split_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order,
-                             const ProgressFn &progress, const SweepScratch *scratch)
+void compute_split_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order, MergeVertex *state,
+                        uint32_t *component, const ProgressFn &progress)
 {
-    return sweep_any<false>(grid, order, progress, scratch);
+    if (component)
+        sweep<false>(grid, order, state, ComponentInArray{component}, progress);
+    else
+        sweep<false>(grid, order, state, ComponentInState{state}, progress);
 }
 
 } // namespace arbor::topology

@@ -1,6 +1,7 @@
 // merge_tree.hpp - the join tree and the split tree of a scalar field on the
 // Freudenthal-triangulated grid, augmented (every vertex is in the tree), by
-// union-find sweeps.
+// union-find sweeps, written straight into the state the contour-tree merge
+// works on.
 //
 // The join tree sweeps vertices upwards and tracks the components of the
 // sublevel set: a vertex with no lower neighbour starts a component (a
@@ -21,39 +22,42 @@
 #include "uninitialized_buffer.hpp"
 #include "vertex_order.hpp"
 
-
 #include <cstdint>
 
 namespace arbor::topology {
 
 inline constexpr uint32_t kNoVertex = 0xffffffffu;
 
-struct MergeTree {
-    // Vertex that next extended this vertex's component (join tree: a higher
-    // vertex; split tree: a lower one); kNoVertex for the root (the global
-    // maximum of the join tree, the global minimum of the split tree).
-    UninitializedBuffer<uint32_t> parent;
-    // Number of components this vertex merged: 0 for a leaf (a minimum of the
-    // join tree, a maximum of the split tree), 1 for a regular vertex, >= 2 for
-    // a saddle.  At most 14.
-    UninitializedBuffer<uint8_t> children;
+// What the sweeps and then the contour-tree merge keep per vertex, packed in
+// 16 bytes so that one cache line serves every access to a vertex.
+struct MergeVertex {
+    // Join tree: the vertex that next extended this vertex's component (a
+    // higher one); kNoVertex for the global maximum.
+    uint32_t jt_up;
+    // Split tree: the same downwards; kNoVertex for the global minimum.
+    uint32_t st_down;
+    // The merge's arc; during a sweep, the component the vertex joined.
+    uint32_t label;
+    // Components the vertex merged in each tree: 0 for a leaf, 1 for a
+    // regular vertex, >= 2 for a saddle (at most 14).  The merge marks a
+    // removed vertex by jt_deg = 0xff.
+    uint8_t jt_deg;
+    uint8_t st_deg;
+    // The merge's contour-tree degrees so far.
+    uint8_t cnt_up;
+    uint8_t cnt_down;
 };
+static_assert(sizeof(MergeVertex) == 16);
 
-// Work space of one sweep: per vertex, the component it joined when the
-// sweep passed it (4 bytes a vertex, read only once written).  Union-find runs
-// on components, not vertices: there are as many as the tree has leaves, so
-// their links stay in cache and a find costs no memory round trip.
-struct SweepScratch {
-    uint32_t *component;
-};
-inline constexpr std::size_t kSweepScratchBytes = 4;
-
-// The two sweeps of the grid's vertices in the order `order` (sort_vertices:
-// the order is all they need of the values).  Without scratch, each sweep
-// allocates its own.
-MergeTree compute_join_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order,
-                            const ProgressFn &progress = {}, const SweepScratch *scratch = nullptr);
-MergeTree compute_split_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order,
-                             const ProgressFn &progress = {}, const SweepScratch *scratch = nullptr);
+// Sweeps of the grid's vertices in the order `order` (sort_vertices: the
+// order is all they need of the values).  The join sweep fills jt_up and
+// jt_deg, the split sweep st_down and st_deg; neither touches the other's
+// fields, so two threads may fill one state.  Each keeps the component of
+// every vertex in `component` (4 bytes a vertex) or, when that is nullptr,
+// in the state's `label`, which only one sweep at a time may do.
+void compute_join_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order, MergeVertex *state,
+                       uint32_t *component, const ProgressFn &progress = {});
+void compute_split_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order, MergeVertex *state,
+                        uint32_t *component, const ProgressFn &progress = {});
 
 } // namespace arbor::topology

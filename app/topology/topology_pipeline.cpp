@@ -38,7 +38,8 @@ void refuse_non_finite(const Volume &volume)
 
 } // namespace
 
-TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn &progress, std::stop_token stop)
+TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn &progress, std::stop_token stop,
+                                    uint64_t memory_budget)
 {
     if (volume.empty() || volume.voxel_count() == 0)
         throw std::invalid_argument("cannot compute the topology of an empty volume");
@@ -61,38 +62,39 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
     UninitializedBuffer<uint32_t> order = sort_vertices(volume.type(), volume.data(), n, report("sorting"));
     result.timings.push_back({"sort", watch.lap()});
 
-    // The two sweeps are independent: run the split tree on a second thread.
+    // Both sweeps fill one merge state.  They are independent: with memory
+    // for the split sweep's own component words, it runs on a second thread;
+    // otherwise after the join sweep, reusing the state's label words.
     const GridNeighbors grid(g.dims[0], g.dims[1], g.dims[2]);
-    // One block serves the sweeps' components (4 + 4 bytes a vertex) and then
-    // the merge's state (16): memory touched for the first time costs more
-    // than the sweeps' arithmetic on a virtual machine, so it is touched once.
-    static_assert(2 * kSweepScratchBytes <= kMergeWorkBytes);
-    UninitializedBuffer<uint8_t> work(std::size_t{n} * kMergeWorkBytes);
-    uint32_t *const components = reinterpret_cast<uint32_t *>(work.data());
-    const SweepScratch join_scratch{components};
-    const SweepScratch split_scratch{components + n};
-    MergeTree join, split;
-    std::exception_ptr split_error;
-    std::thread split_thread([&] {
+    UninitializedBuffer<MergeVertex> state(n);
+    const bool parallel = memory_budget >= contour_tree_work_bytes(n, true);
+    if (parallel) {
+        UninitializedBuffer<uint32_t> split_components(n);
+        std::exception_ptr split_error;
+        std::thread split_thread([&] {
+            try {
+                compute_split_tree(grid, order, state.data(), split_components.data(), poll);
+            } catch (...) {
+                split_error = std::current_exception();
+            }
+        });
         try {
-            split = compute_split_tree(grid, order, poll, &split_scratch);
+            compute_join_tree(grid, order, state.data(), nullptr, report("join and split trees"));
         } catch (...) {
-            split_error = std::current_exception();
+            split_thread.join();
+            throw;
         }
-    });
-    try {
-        join = compute_join_tree(grid, order, report("join and split trees"),
-                                 &join_scratch);
-    } catch (...) {
         split_thread.join();
-        throw;
+        if (split_error)
+            std::rethrow_exception(split_error);
+    } else {
+        const ProgressFn join_progress = report("join tree"), split_progress = report("split tree");
+        compute_join_tree(grid, order, state.data(), nullptr, join_progress);
+        compute_split_tree(grid, order, state.data(), nullptr, split_progress);
     }
-    split_thread.join();
-    if (split_error)
-        std::rethrow_exception(split_error);
     result.timings.push_back({"join+split trees", watch.lap()});
-    result.tree = merge_contour_tree(std::move(join), std::move(split), std::move(order), report("merging trees"),
-                                     std::move(work));
+
+    result.tree = merge_contour_tree(std::move(state), std::move(order), report("merging trees"));
     result.timings.push_back({"merge", watch.lap()});
 
     result.total_seconds = total.lap();
@@ -117,9 +119,9 @@ void decompose(TopologyResult &result, const Volume &volume, const ImportanceFn 
 }
 
 TopologyResult compute_topology(const Volume &volume, const ImportanceFn &importance,
-                                const StageProgressFn &progress, std::stop_token stop)
+                                const StageProgressFn &progress, std::stop_token stop, uint64_t memory_budget)
 {
-    TopologyResult result = compute_contour_tree(volume, progress, stop);
+    TopologyResult result = compute_contour_tree(volume, progress, stop, memory_budget);
     decompose(result, volume, importance, progress, stop);
     return result;
 }

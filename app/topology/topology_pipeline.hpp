@@ -9,6 +9,7 @@
 
 #include "core/volume.hpp"
 
+#include <cstdint>
 #include <functional>
 #include <stop_token>
 #include <string>
@@ -33,20 +34,28 @@ struct TopologyResult {
 using StageProgressFn = std::function<void(const char *stage, double fraction)>;
 
 // Work space compute_contour_tree needs at its peak, beyond the volume
-// itself: the merge's, with the vertex order (4 bytes a voxel), both merge
-// trees (5 + 5) and the merge state (16), plus about 1 byte a voxel for the
-// nodes and arcs of a noisy CT's tree (a node per 20 voxels).  Callers check
-// it against the memory available before they start.
-inline constexpr uint64_t kContourTreeWorkBytesPerVoxel = 31;
-inline uint64_t contour_tree_work_bytes(uint64_t voxels) { return voxels * kContourTreeWorkBytesPerVoxel; }
+// itself, during the sweeps: the vertex order (4 bytes a voxel) and the merge
+// state (16), plus the split sweep's own component words (4) when the two
+// sweeps run at once; and up to 3 bytes a voxel for the tree's nodes and arcs
+// and the merge's lists (2.3 on an unfiltered CT, a node per 20 voxels).  The
+// merge needs no more: it frees the order before it allocates the
+// segmentation (4).
+inline constexpr uint64_t kContourTreeWorkBytesPerVoxel = 23;         // sweeps one after the other
+inline constexpr uint64_t kContourTreeParallelWorkBytesPerVoxel = 27; // both sweeps at once
+inline uint64_t contour_tree_work_bytes(uint64_t voxels, bool parallel = false)
+{
+    return voxels * (parallel ? kContourTreeParallelWorkBytesPerVoxel : kContourTreeWorkBytesPerVoxel);
+}
 
 // The contour tree alone (result.branches left empty).  Throws
 // std::invalid_argument for volumes with NaN or infinite values (naming how
 // many and where) and for empty volumes.  A stop request on `stop` is seen
-// by both sweeps (the split tree runs on a second thread) and by every
-// stage, which then unwind with Cancelled.
+// by both sweeps and by every stage, which then unwind with Cancelled.  The
+// two sweeps run at once (the split tree on a second thread) when
+// `memory_budget` bytes hold contour_tree_work_bytes(voxels, true), one
+// after the other otherwise (4 bytes a voxel less, twice the time).
 TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn &progress = {},
-                                    std::stop_token stop = {});
+                                    std::stop_token stop = {}, uint64_t memory_budget = UINT64_MAX);
 
 // (Re)decomposes result.tree into branches ranked by `importance`, adding
 // the stage's time: simplifiers compared on one volume share one tree.
@@ -55,6 +64,7 @@ void decompose(TopologyResult &result, const Volume &volume, const ImportanceFn 
 
 // Both: compute_contour_tree, then decompose.
 TopologyResult compute_topology(const Volume &volume, const ImportanceFn &importance,
-                                const StageProgressFn &progress = {}, std::stop_token stop = {});
+                                const StageProgressFn &progress = {}, std::stop_token stop = {},
+                                uint64_t memory_budget = UINT64_MAX);
 
 } // namespace arbor::topology

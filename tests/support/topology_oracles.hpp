@@ -440,7 +440,11 @@ inline std::vector<int64_t> node_of_vertices(const topology::ContourTree &tree)
 
 // The contour tree exactly as the pipeline's first three stages build it (sort,
 // join and split sweeps, merge), without the branch decomposition, so that
-// tree-level properties can be checked even where a later stage fails.
+// tree-level properties can be checked even where a later stage fails.  The
+// sweeps run one after the other, both keeping their components in the merge
+// state, as the pipeline does when memory is short; compute_topology (with
+// no memory budget) runs them at once, so comparing the two compares both
+// ways of sweeping.
 inline topology::ContourTree staged_contour_tree(const Volume &volume)
 {
     using namespace topology;
@@ -448,9 +452,10 @@ inline topology::ContourTree staged_contour_tree(const Volume &volume)
     const uint32_t n = static_cast<uint32_t>(volume.voxel_count());
     UninitializedBuffer<uint32_t> order = sort_vertices(volume.type(), volume.data(), n);
     const GridNeighbors grid(g.dims[0], g.dims[1], g.dims[2]);
-    MergeTree join = compute_join_tree(grid, order);
-    MergeTree split = compute_split_tree(grid, order);
-    return merge_contour_tree(std::move(join), std::move(split), std::move(order));
+    UninitializedBuffer<MergeVertex> state(n);
+    compute_join_tree(grid, order, state.data(), nullptr);
+    compute_split_tree(grid, order, state.data(), nullptr);
+    return merge_contour_tree(std::move(state), std::move(order));
 }
 
 } // namespace arbor::test

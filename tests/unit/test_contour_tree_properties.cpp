@@ -467,6 +467,8 @@ TEST(ContourTreeProperties, LocalExtremaAreTheTreesLeaves)
 
 // The pipeline (with its shared work space) builds the same tree as the
 // stages run one by one, and does not fail on any valid volume.
+// The staged tree sweeps one tree after the other in the merge state alone;
+// the pipeline sweeps both at once: the same tree either way.
 TEST(ContourTreeProperties, PipelineSucceedsAndBuildsTheStagedTree)
 {
     for_every_grid([](const Sample &s) -> std::string {
