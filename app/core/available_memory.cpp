@@ -1,5 +1,6 @@
 #include "available_memory.hpp"
 
+#include "resident_memory.hpp"
 #include "volume_header.hpp"
 
 #include <algorithm>
@@ -21,21 +22,6 @@ uint64_t file_number(const char *path)
     return std::strtoull(text.c_str(), nullptr, 10);
 }
 
-uint64_t meminfo_available()
-{
-    std::ifstream meminfo("/proc/meminfo");
-    std::string key;
-    while (meminfo >> key) {
-        if (key == "MemAvailable:") {
-            uint64_t kb = 0;
-            meminfo >> kb;
-            return kb * 1024;
-        }
-        std::getline(meminfo, key);
-    }
-    return 0;
-}
-
 } // namespace
 
 uint64_t available_memory_bytes()
@@ -46,7 +32,7 @@ uint64_t available_memory_bytes()
         if (end && end != env && *end == '\0')
             return v;
     }
-    uint64_t available = meminfo_available();
+    uint64_t available = proc_kilobytes_field("/proc/meminfo", "MemAvailable:");
     // The cgroup this process is in (containers, systemd slices): its limit
     // less what the group already uses.
     const uint64_t limit = file_number("/sys/fs/cgroup/memory.max");

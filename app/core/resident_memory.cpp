@@ -5,34 +5,29 @@
 
 namespace arbor {
 
-namespace {
-
-// The value of a "Key:  123 kB" line of /proc/self/status, in bytes.
-uint64_t status_bytes(const char *wanted)
+uint64_t proc_kilobytes_field(const char *path, const char *wanted)
 {
-    std::ifstream status("/proc/self/status");
+    std::ifstream in(path);
     std::string key;
-    while (status >> key) {
+    while (in >> key) {
         if (key == wanted) {
             uint64_t kb = 0;
-            status >> kb;
+            in >> kb;
             return kb * 1024;
         }
-        std::getline(status, key);
+        std::getline(in, key);
     }
     return 0;
 }
 
-} // namespace
-
 uint64_t resident_bytes()
 {
-    return status_bytes("VmRSS:");
+    return proc_kilobytes_field("/proc/self/status", "VmRSS:");
 }
 
 uint64_t peak_resident_bytes()
 {
-    return status_bytes("VmHWM:");
+    return proc_kilobytes_field("/proc/self/status", "VmHWM:");
 }
 
 void reset_peak_resident_bytes()

@@ -8,6 +8,10 @@
 
 namespace arbor {
 
+// The value of a "Key:  123 kB" line of a /proc file (status, meminfo), in
+// bytes; 0 where the file or the key is missing.  `key` includes the colon.
+uint64_t proc_kilobytes_field(const char *path, const char *key);
+
 // Resident set size now (VmRSS), in bytes; 0 where the kernel does not say.
 uint64_t resident_bytes();
 

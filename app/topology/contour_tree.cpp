@@ -34,8 +34,6 @@ HugeVector<uint32_t> arc_interior_voxels(const ContourTree &tree)
 
 namespace {
 
-// The sweeps' output and the merge's work space (merge_tree.hpp).
-using VertexState = MergeVertex;
 constexpr uint8_t kRemoved = 0xff;
 
 // Leaf pruning on the two augmented trees (Carr, Snoeyink, Axen).  A vertex is
@@ -48,7 +46,7 @@ constexpr uint8_t kRemoved = 0xff;
 class LeafPruning {
 public:
     // `arcs` bounds the number of arcs (the number of nodes).
-    LeafPruning(VertexState *state, uint32_t n, std::size_t arcs) : n_(n), s_(state) { arcs_.reserve(arcs); }
+    LeafPruning(MergeVertex *state, uint32_t n, std::size_t arcs) : n_(n), s_(state) { arcs_.reserve(arcs); }
 
     void run(const ProgressFn &progress, const uint32_t *order)
     {
@@ -97,7 +95,7 @@ public:
             while (count < kBatch && !stack.empty()) {
                 const uint32_t v = stack.back();
                 stack.pop_back();
-                const VertexState &sv = s_[v];
+                const MergeVertex &sv = s_[v];
                 if (sv.jt_deg == kRemoved)
                     continue;
                 __builtin_prefetch(&s_[sv.st_deg == 0 ? sv.st_down : sv.jt_up]);
@@ -133,16 +131,16 @@ private:
     // to, and pushes that vertex on `stack` (if given) when it becomes a leaf.
     bool remove_if_leaf(uint32_t v, std::vector<uint32_t> *stack)
     {
-        VertexState &sv = s_[v];
+        MergeVertex &sv = s_[v];
         if (sv.jt_deg == kRemoved)
             return false;
         uint32_t w;
         if (sv.st_deg == 0 && sv.jt_deg == 1) {
-            w = find(&VertexState::st_down, v);
+            w = find(&MergeVertex::st_down, v);
             emit(v, w, /*downward=*/true);
             --s_[w].st_deg;
         } else if (sv.jt_deg == 0 && sv.st_deg == 1) {
-            w = find(&VertexState::jt_up, v);
+            w = find(&MergeVertex::jt_up, v);
             emit(v, w, /*downward=*/false);
             --s_[w].jt_deg;
         } else {
@@ -154,14 +152,14 @@ private:
         return true;
     }
 
-    static bool is_leaf(const VertexState &s)
+    static bool is_leaf(const MergeVertex &s)
     {
         return (s.st_deg == 0 && s.jt_deg == 1) || (s.jt_deg == 0 && s.st_deg == 1);
     }
 
     // First vertex that is not removed along the links from v's link,
     // compressing the path.
-    uint32_t find(uint32_t VertexState::*link, uint32_t v)
+    uint32_t find(uint32_t MergeVertex::*link, uint32_t v)
     {
         uint32_t x = s_[v].*link;
         uint32_t root = x;
@@ -183,8 +181,8 @@ private:
 
     void emit(uint32_t v, uint32_t w, bool downward)
     {
-        VertexState &sv = s_[v];
-        VertexState &sw = s_[w];
+        MergeVertex &sv = s_[v];
+        MergeVertex &sw = s_[w];
         const bool regular = downward ? (sv.cnt_up == 1 && sv.cnt_down == 0)
                                       : (sv.cnt_down == 1 && sv.cnt_up == 0);
         uint32_t arc;
@@ -211,7 +209,7 @@ private:
     }
 
     uint32_t n_;
-    VertexState *s_;
+    MergeVertex *s_;
     HugeVector<Arc> arcs_;
     uint32_t last_ = 0;
 };
@@ -240,12 +238,12 @@ ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, Uni
         return ct;
     if (order.size() != n)
         throw std::invalid_argument("merge_contour_tree: the merge state and the vertex order differ in size");
-    VertexState *state = merge_state.data();
+    MergeVertex *state = merge_state.data();
     // The contour tree's down-degrees are the join tree's, its up-degrees
     // the split tree's: its nodes are known before the merge.
     std::size_t node_count = 0;
     for (uint32_t v = 0; v < n; ++v) {
-        VertexState &s = state[v];
+        MergeVertex &s = state[v];
         s.label = 0;
         s.cnt_up = s.cnt_down = 0;
         node_count += s.jt_deg != 1 || s.st_deg != 1;
@@ -280,7 +278,7 @@ ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, Uni
         if (i + kAhead < n)
             __builtin_prefetch(&state[order[i + kAhead]]);
         const uint32_t v = order[i];
-        VertexState &sv = state[v];
+        MergeVertex &sv = state[v];
         if (sv.cnt_up == 1 && sv.cnt_down == 1)
             continue;
         sv.st_down = static_cast<uint32_t>(ct.node_vertex.size());

@@ -77,11 +77,24 @@ void sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order
     uint64_t *seen = swept.data();
     constexpr uint32_t kProgressStep = 1u << 20;
     // The sweep order is known ahead: fetch what a vertex a few steps on
-    // will read, so that the misses of consecutive vertices overlap.
+    // will read, so that the misses of consecutive vertices overlap.  Two
+    // stages: the swept bits of its neighbourhood (and its own state) 32
+    // steps ahead; 16 steps ahead those bits are in cache and say which
+    // neighbours' component words it will read (one per piece of its lower
+    // link, usually in other rows and planes), so those are fetched too.
     constexpr uint32_t kAhead = 16;
     const int64_t row = grid.nx(), plane = grid.nx() * grid.ny();
-    const auto prefetch = [&](uint32_t at) {
-        const int64_t w = order[Join ? at : n - 1 - at];
+    const auto vertex_at = [&](uint32_t at) { return order[Join ? at : n - 1 - at]; };
+    const auto lower_link = [&](uint32_t v) {
+        uint32_t below = 0;
+        grid.for_each_indexed(v, [&](std::size_t i, int64_t neighbor) {
+            const uint64_t w = static_cast<uint64_t>(neighbor);
+            below |= static_cast<uint32_t>((seen[w >> 6] >> (w & 63)) & 1u) << i;
+        });
+        return below;
+    };
+    const auto prefetch_bits = [&](uint32_t at) {
+        const int64_t w = vertex_at(at);
         __builtin_prefetch(&component[w], 1);
         __builtin_prefetch(&state[w], 1);
         for (const int64_t p : {w - plane, w, w + plane})
@@ -89,16 +102,20 @@ void sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order
                 if (r >= 0 && r < static_cast<int64_t>(n))
                     __builtin_prefetch(seen + (r >> 6));
     };
+    const auto prefetch_components = [&](uint32_t at) {
+        const uint32_t w = vertex_at(at);
+        const LinkComponents &pieces = link[lower_link(w)];
+        for (int p = 0; p < pieces.count; ++p)
+            __builtin_prefetch(&component[w + grid.offset(pieces.first[p])]);
+    };
 
     for (uint32_t step = 0; step < n; ++step) {
+        if (step + 2 * kAhead < n)
+            prefetch_bits(step + 2 * kAhead);
         if (step + kAhead < n)
-            prefetch(step + kAhead);
-        const uint32_t v = order[Join ? step : n - 1 - step];
-        uint32_t below = 0;
-        grid.for_each_indexed(v, [&](std::size_t i, int64_t neighbor) {
-            const uint64_t w = static_cast<uint64_t>(neighbor);
-            below |= static_cast<uint32_t>((seen[w >> 6] >> (w & 63)) & 1u) << i;
-        });
+            prefetch_components(step + kAhead);
+        const uint32_t v = vertex_at(step);
+        const uint32_t below = lower_link(v);
         seen[v >> 6] |= uint64_t{1} << (v & 63);
         const LinkComponents &pieces = link[below];
         uint32_t roots[6];
@@ -135,24 +152,28 @@ void sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order
     }
 }
 
+template <bool Join>
+void sweep_into(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order, MergeVertex *state,
+                uint32_t *component, const ProgressFn &progress)
+{
+    if (component)
+        sweep<Join>(grid, order, state, ComponentInArray{component}, progress);
+    else
+        sweep<Join>(grid, order, state, ComponentInState{state}, progress);
+}
+
 } // namespace
 
 void compute_join_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order, MergeVertex *state,
                        uint32_t *component, const ProgressFn &progress)
 {
-    if (component)
-        sweep<true>(grid, order, state, ComponentInArray{component}, progress);
-    else
-        sweep<true>(grid, order, state, ComponentInState{state}, progress);
+    sweep_into<true>(grid, order, state, component, progress);
 }
 
 void compute_split_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order, MergeVertex *state,
                         uint32_t *component, const ProgressFn &progress)
 {
-    if (component)
-        sweep<false>(grid, order, state, ComponentInArray{component}, progress);
-    else
-        sweep<false>(grid, order, state, ComponentInState{state}, progress);
+    sweep_into<false>(grid, order, state, component, progress);
 }
 
 } // namespace arbor::topology
