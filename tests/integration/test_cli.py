@@ -792,6 +792,7 @@ class Run(unittest.TestCase):
         voxels = 256 ** 3
         volume = DATA / "bonsai/bonsai.vti"
         out = SCRATCH / "too-large.png"
+        out.unlink(missing_ok=True)
         # At the header, before the voxels are read.
         code, _, err = arbor("run", volume, "--no-cache", "-o", out,
                              env={"ARBOR_MEMORY_AVAILABLE": "100000000"}, check=False)
@@ -805,10 +806,16 @@ class Run(unittest.TestCase):
         self.assertEqual(code, 1, err)
         self.assertIn(f"the contour tree of 256 x 256 x 256 voxels needs about {voxels * 23 / 1e6:.1f} MB", err)
         self.assertFalse(out.exists())
-        # With room for both, the same run goes through.
-        arbor("run", volume, "--no-cache", "--filter", "none", "--width", 64, "--height", 64, "-o", out,
-              env={"ARBOR_MEMORY_AVAILABLE": str(voxels * 40)})
-        self.assertTrue(out.exists())
+        # With room for both, the same run goes through: with 40 B/voxel the
+        # join and split sweeps run at once (27), with 25 one after the other
+        # (23); the tree, and so the image, is the same.
+        images = []
+        for per_voxel in (40, 25):
+            image = SCRATCH / f"fits-{per_voxel}.png"
+            arbor("run", volume, "--no-cache", "--filter", "none", "--width", 64, "--height", 64, "-o", image,
+                  env={"ARBOR_MEMORY_AVAILABLE": str(voxels * per_voxel)})
+            images.append(image.read_bytes())
+        self.assertEqual(images[0], images[1], "sweeps at once and one after the other")
 
     def test_bad_inputs_are_refused_clearly(self):
         cases = [
