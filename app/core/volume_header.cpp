@@ -40,15 +40,10 @@ std::string format_bytes(uint64_t bytes)
     return buf;
 }
 
-namespace {
-
-std::string dims_text(const arbor_volume &h)
+std::string dims_text(const int64_t dims[3])
 {
-    return std::to_string(h.dims[0]) + " x " + std::to_string(h.dims[1]) + " x " +
-           std::to_string(h.dims[2]);
+    return std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " + std::to_string(dims[2]);
 }
-
-} // namespace
 
 std::string check_volume_header(const arbor_volume &h, uint64_t max_bytes)
 {
@@ -57,21 +52,21 @@ std::string check_volume_header(const arbor_volume &h, uint64_t max_bytes)
         return "unknown voxel type code " + std::to_string(h.voxel_type);
     for (int a = 0; a < 3; ++a)
         if (h.dims[a] <= 0)
-            return "dimensions " + dims_text(h) + ": every dimension must be at least 1";
+            return "dimensions " + dims_text(h.dims) + ": every dimension must be at least 1";
     // Overflow-safe product: each factor is positive, compare by division.
     int64_t count = h.dims[0];
     for (int a = 1; a < 3; ++a) {
         if (h.dims[a] > kMaxVoxelCount / count)
-            return "dimensions " + dims_text(h) + " give more than " +
+            return "dimensions " + dims_text(h.dims) + " give more than " +
                    std::to_string(kMaxVoxelCount) + " voxels, the most Arbor handles";
         count *= h.dims[a];
     }
     if (count > kMaxVoxelCount)
-        return "dimensions " + dims_text(h) + " give more than " + std::to_string(kMaxVoxelCount) +
+        return "dimensions " + dims_text(h.dims) + " give more than " + std::to_string(kMaxVoxelCount) +
                " voxels, the most Arbor handles";
     const uint64_t bytes = static_cast<uint64_t>(count) * size;
     if (bytes > max_bytes)
-        return "dimensions " + dims_text(h) + " of " + arbor_voxel_type_name(h.voxel_type) +
+        return "dimensions " + dims_text(h.dims) + " of " + arbor_voxel_type_name(h.voxel_type) +
                " voxels need " + format_bytes(bytes) + ", more than the " + format_bytes(max_bytes) +
                " this host allows for one volume (ARBOR_MAX_VOLUME_BYTES)";
     for (int a = 0; a < 3; ++a)

@@ -24,6 +24,9 @@ uint64_t default_max_volume_bytes();
 // "" when the header is acceptable, otherwise a sentence saying what is wrong.
 std::string check_volume_header(const arbor_volume &header, uint64_t max_bytes);
 
+// "512 x 512 x 300", for messages.
+std::string dims_text(const int64_t dims[3]);
+
 // "1.5 GB", "312 kB"...
 std::string format_bytes(uint64_t bytes);
 

@@ -14,11 +14,6 @@ namespace {
 // vertex_arc and the cut's label map, 4 each.
 constexpr uint64_t kKeptBytesPerVoxel = 8;
 
-std::string dims_text(const int64_t *dims)
-{
-    return std::to_string(dims[0]) + " x " + std::to_string(dims[1]) + " x " + std::to_string(dims[2]);
-}
-
 } // namespace
 
 std::string admit_volume(const arbor_volume &header, const Document &document)
