@@ -66,10 +66,13 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
     // for the split sweep's own component words, it runs on a second thread;
     // otherwise after the join sweep, reusing the state's label words.
     const GridNeighbors grid(g.dims[0], g.dims[1], g.dims[2]);
+    // Their memory is faulted in first, as a stage of its own: on a virtual
+    // machine that alone takes seconds (core/huge_pages.hpp).
     UninitializedBuffer<MergeVertex> state(n);
     const bool parallel = memory_budget >= contour_tree_work_bytes(n, true);
+    UninitializedBuffer<uint32_t> split_components(parallel ? n : 0);
+    result.timings.push_back({"memory", watch.lap()});
     if (parallel) {
-        UninitializedBuffer<uint32_t> split_components(n);
         std::exception_ptr split_error;
         std::thread split_thread([&] {
             try {
@@ -87,6 +90,7 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
         split_thread.join();
         if (split_error)
             std::rethrow_exception(split_error);
+        split_components.release();
     } else {
         const ProgressFn join_progress = report("join tree"), split_progress = report("split tree");
         compute_join_tree(grid, order, state.data(), nullptr, join_progress);
