@@ -10,9 +10,9 @@ namespace arbor::bench {
 namespace {
 
 constexpr const char *kHeaderFormat =
-    "%-32s %-11s %-4s %10s %7s %7s %7s %7s %8s | %8s %6s %6s %5s %7s | %9s %9s | %8s %8s %-6s %8s %6s\n";
+    "%-32s %-11s %-4s %10s %7s %7s %7s %7s %7s %8s | %8s %6s %6s %5s %7s | %9s %9s | %8s %8s %-6s %8s %6s\n";
 constexpr const char *kRowFormat =
-    "%-32s %-11s %-4s %10lld %7s %7s %7s %7s %8s | %8s %6s %6s %5s %7s | %9lld %9lld | %8s %8s %-6s %8s %6s\n";
+    "%-32s %-11s %-4s %10lld %7s %7s %7s %7s %7s %8s | %8s %6s %6s %5s %7s | %9lld %9lld | %8s %8s %-6s %8s %6s\n";
 
 std::string fixed(double v, int decimals)
 {
@@ -61,7 +61,7 @@ double work_per_voxel(const TableRow &r)
 void print_header(std::ostream &out)
 {
     char line[512];
-    std::snprintf(line, sizeof line, kHeaderFormat, "input", "dims", "type", "voxels", "sort", "trees", "merge",
+    std::snprintf(line, sizeof line, kHeaderFormat, "input", "dims", "type", "voxels", "sort", "alloc", "trees", "merge",
                   "branch", "total s", "peak MB", "B/vx", "work", "in", "base MB", "nodes", "extrema", "TTK s",
                   "TTK MB", "row", "speed-up", "mem");
     out << line;
@@ -92,7 +92,7 @@ void print_row(std::ostream &out, const TableRow &row)
     std::snprintf(line, sizeof line, kRowFormat, row.name.c_str(), dims.c_str(), arbor_voxel_type_name(r.voxel_type),
                   static_cast<long long>(r.voxels), seconds(r.stage_seconds[0]).c_str(),
                   seconds(r.stage_seconds[1]).c_str(), seconds(r.stage_seconds[2]).c_str(),
-                  seconds(r.stage_seconds[3]).c_str(), seconds(r.total_seconds).c_str(), peak.c_str(),
+                  seconds(r.stage_seconds[3]).c_str(), seconds(r.stage_seconds[4]).c_str(), seconds(r.total_seconds).c_str(), peak.c_str(),
                   fixed(peak_per_voxel(row), 1).c_str(), fixed(work_per_voxel(row), 1).c_str(),
                   fixed(static_cast<double>(arbor_voxel_size(r.voxel_type)), 0).c_str(),
                   fixed(megabytes(static_cast<double>(r.base_rss)), 0).c_str(), static_cast<long long>(r.nodes),

@@ -42,8 +42,10 @@ struct Options {
 void print_scaling(const std::vector<int> &cores, const std::vector<std::pair<std::string, std::vector<RunReport>>> &runs)
 {
     std::cout << "\ncore scaling: seconds of the fastest run pinned to N cores (sched_setaffinity); speed-up = "
-              << cores.front() << "-core time / N-core time, total and per stage ("
-              << kStageNames[0] << ", " << kStageNames[1] << ", " << kStageNames[2] << ", " << kStageNames[3] << ")\n";
+              << cores.front() << "-core time / N-core time, total and per stage (";
+    for (std::size_t s = 0; s < kStageNames.size(); ++s)
+        std::cout << (s ? ", " : "") << kStageNames[s];
+    std::cout << ")\n";
     std::printf("%-22s", "input");
     for (const int c : cores)
         std::printf(" %8s", (std::to_string(c) + (c == 1 ? " core" : " cores")).c_str());

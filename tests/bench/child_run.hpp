@@ -17,7 +17,8 @@
 namespace arbor::bench {
 
 // The pipeline's stages, in the order of TopologyResult::timings.
-inline constexpr std::array<const char *, 4> kStageNames = {"sort", "join+split trees", "merge",
+// "memory": faulting in the sweeps' state, seconds on a virtual machine.
+inline constexpr std::array<const char *, 5> kStageNames = {"sort", "memory", "join+split trees", "merge",
                                                             "branches+measures"};
 
 struct RunReport {
