@@ -68,7 +68,7 @@ Volume Volume::allocate(arbor_voxel_type type, const Geometry &geometry, ValueMa
     void *p = nullptr;
     if (rounded >= kHugePageThreshold) {
         rounded = mapped_bytes(rounded);
-        p = allocate_large(rounded);
+        p = allocate_large(rounded, Pages::Small);
     } else {
         p = std::aligned_alloc(64, rounded);
     }

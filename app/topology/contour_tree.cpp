@@ -311,7 +311,7 @@ ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, Uni
     arcs = {};
 
     // Augmentation (the order is gone by now: the peak stays the state's).
-    ct.vertex_arc = UninitializedBuffer<uint32_t>(n);
+    ct.vertex_arc = UninitializedBuffer<uint32_t>(n, Pages::Small);
     for (uint32_t v = 0; v < n; ++v)
         ct.vertex_arc[v] = compact.empty() ? kNoArc : compact[state[v].label];
     merge_state.release();

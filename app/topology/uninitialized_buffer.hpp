@@ -19,8 +19,12 @@ class UninitializedBuffer {
 
 public:
     UninitializedBuffer() = default;
-    explicit UninitializedBuffer(std::size_t n) : data_(n > 0 ? HugePageAllocator<T>().allocate(n) : nullptr), size_(n)
+    explicit UninitializedBuffer(std::size_t n, Pages pages = Pages::Huge) : size_(n)
     {
+        if (n > static_cast<std::size_t>(-1) / sizeof(T))
+            throw std::bad_array_new_length();
+        if (n > 0)
+            data_ = static_cast<T *>(allocate_large(n * sizeof(T), pages));
     }
     ~UninitializedBuffer() { release(); }
     UninitializedBuffer(UninitializedBuffer &&o) noexcept { swap(o); }
@@ -44,7 +48,7 @@ public:
 
     void release()
     {
-        HugePageAllocator<T>().deallocate(data_, size_);
+        free_large(data_, size_ * sizeof(T));
         data_ = nullptr;
         size_ = 0;
     }

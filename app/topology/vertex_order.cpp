@@ -133,7 +133,7 @@ void radix_sort64(const double *v, uint32_t n, uint32_t *order, const ProgressFn
 UninitializedBuffer<uint32_t> sort_vertices(arbor_voxel_type type, const void *values, uint32_t n,
                                             const ProgressFn &progress)
 {
-    UninitializedBuffer<uint32_t> order(n);
+    UninitializedBuffer<uint32_t> order(n, Pages::Small); // streamed
     switch (type) {
     case ARBOR_VOXEL_U8: counting_sort(static_cast<const uint8_t *>(values), n, order.data(), progress); break;
     case ARBOR_VOXEL_I8: counting_sort(static_cast<const int8_t *>(values), n, order.data(), progress); break;
