@@ -134,6 +134,39 @@ void compute_normals(VoxelGrid &g, const sdk::Task &task)
 
 } // namespace
 
+void LabelGrid::assign_zero(std::size_t count, uint32_t max_label)
+{
+    clear();
+    width_ = max_label < 256 ? 1 : max_label < 65536 ? 2 : 4;
+    size_ = count;
+    if (width_ == 1)
+        narrow_.assign(count, 0);
+    else if (width_ == 2)
+        medium_.assign(count, 0);
+    else
+        wide_.assign(count, 0);
+}
+
+void LabelGrid::assign(const uint32_t *labels, std::size_t count, uint32_t max_label)
+{
+    assign_zero(count, max_label);
+    if (width_ == 4) {
+        std::copy(labels, labels + count, wide_.begin());
+        return;
+    }
+    for (std::size_t v = 0; v < count; ++v)
+        set(v, labels[v]);
+}
+
+void LabelGrid::clear()
+{
+    width_ = 0;
+    size_ = 0;
+    narrow_ = {};
+    medium_ = {};
+    wide_ = {};
+}
+
 void downsample(const VoxelGrid &g, VoxelGrid &half, const sdk::Task &task)
 {
     half.nx = (g.nx + 1) / 2;
@@ -141,7 +174,10 @@ void downsample(const VoxelGrid &g, VoxelGrid &half, const sdk::Task &task)
     half.nz = (g.nz + 1) / 2;
     const std::size_t n = static_cast<std::size_t>(half.nx * half.ny * half.nz);
     half.value.assign(n, 0.0f);
-    half.label.assign(g.label.empty() ? 0 : n, 0u);
+    if (g.label.empty())
+        half.label.clear();
+    else
+        half.label.assign_zero(n, g.max_label);
     half.max_label = g.max_label;
     for_slabs(half.nz, task, [&](int64_t k) {
         for (int64_t j = 0; j < half.ny; ++j)
@@ -155,7 +191,7 @@ void downsample(const VoxelGrid &g, VoxelGrid &half, const sdk::Task &task)
                 const std::size_t at = half.index(i, j, k);
                 half.value[at] = sum / static_cast<float>(count);
                 if (!g.label.empty())
-                    half.label[at] = g.label[g.index(2 * i, 2 * j, 2 * k)];
+                    half.label.set(at, g.label[g.index(2 * i, 2 * j, 2 * k)]);
             }
     });
     // Each half voxel sits at the centre of the 2 x 2 x 2 block it averages.
@@ -214,8 +250,9 @@ const VoxelGrid &VoxelGridCache::update(const arbor_volume &v, uint64_t volume_r
         ++generation_;
         grid_.max_label = 0;
         if (labels) {
-            grid_.label.assign(label_map->labels, label_map->labels + grid_.value.size());
-            grid_.max_label = *std::max_element(grid_.label.begin(), grid_.label.end());
+            const uint32_t *first = label_map->labels, *last = first + grid_.value.size();
+            grid_.max_label = first == last ? 0 : *std::max_element(first, last);
+            grid_.label.assign(first, grid_.value.size(), grid_.max_label);
         } else {
             grid_.label.clear();
         }

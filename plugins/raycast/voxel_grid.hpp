@@ -22,10 +22,44 @@ inline Vec3 mul(const Mat3 &m, const Vec3 &v)
             m[6] * v[0] + m[7] * v[1] + m[8] * v[2]};
 }
 
+// Labels per voxel in the fewest bytes that hold the largest: a cut keeps
+// tens of branches, so one byte a voxel instead of four (a 512 x 512 x 2000
+// CT: 0.5 GB instead of 2.1).
+class LabelGrid {
+public:
+    bool empty() const { return width_ == 0; }
+    std::size_t size() const { return size_; }
+    uint32_t operator[](std::size_t v) const
+    {
+        return width_ == 1 ? uint32_t{narrow_[v]} : width_ == 2 ? uint32_t{medium_[v]} : wide_[v];
+    }
+    // Copies labels [0, count) whose largest is `max_label`.
+    void assign(const uint32_t *labels, std::size_t count, uint32_t max_label);
+    // count labels of `count`, all 0 (the narrowest kind), to be set().
+    void assign_zero(std::size_t count, uint32_t max_label);
+    void set(std::size_t v, uint32_t label)
+    {
+        if (width_ == 1)
+            narrow_[v] = static_cast<uint8_t>(label);
+        else if (width_ == 2)
+            medium_[v] = static_cast<uint16_t>(label);
+        else
+            wide_[v] = label;
+    }
+    void clear();
+
+private:
+    int width_ = 0; // 0: no labels
+    std::size_t size_ = 0;
+    std::vector<uint8_t> narrow_;
+    std::vector<uint16_t> medium_;
+    std::vector<uint32_t> wide_;
+};
+
 struct VoxelGrid {
     int64_t nx = 0, ny = 0, nz = 0;
-    std::vector<float> value;    // i fastest
-    std::vector<uint32_t> label; // empty: every voxel has label 0
+    std::vector<float> value; // i fastest
+    LabelGrid label;          // empty: every voxel has label 0
     uint32_t max_label = 0;
     std::vector<int8_t> normal;  // [3 * voxels]: unit world gradient * 127; 0 where the field is flat
     // Gradient magnitude per voxel, 255 at the field's 99.5th percentile (and above).

@@ -83,10 +83,15 @@ void VolumeTextures::upload_labels(const raycast::VoxelGrid &g)
         return;
     }
     if (g.max_label < 65536) {
-        std::vector<uint16_t> small(g.label.begin(), g.label.end());
+        std::vector<uint16_t> small(g.label.size());
+        for (std::size_t v = 0; v < small.size(); ++v)
+            small[v] = static_cast<uint16_t>(g.label[v]);
         texture_3d(labels_, GL_R16UI, GL_RED_INTEGER, GL_UNSIGNED_SHORT, dims_of(g), small.data());
     } else {
-        texture_3d(labels_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, dims_of(g), g.label.data());
+        std::vector<uint32_t> wide(g.label.size());
+        for (std::size_t v = 0; v < wide.size(); ++v)
+            wide[v] = g.label[v];
+        texture_3d(labels_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, dims_of(g), wide.data());
     }
     check_gl("uploading the label map");
 }
