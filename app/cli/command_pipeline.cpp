@@ -8,9 +8,10 @@ namespace arbor::cli {
 
 namespace {
 
-pipeline::PipelineOptions options_for(Context &context, bool use_cache)
+pipeline::PipelineOptions options_for(Context &context, bool use_cache, bool release_imported_voxels)
 {
     pipeline::PipelineOptions o;
+    o.release_imported_voxels = release_imported_voxels;
     o.max_volume_bytes = context.max_volume_bytes;
     o.progress = &context.progress;
     o.fetch_input = fetch_pacs_input;
@@ -28,8 +29,9 @@ pipeline::PipelineOptions options_for(Context &context, bool use_cache)
 
 } // namespace
 
-CommandPipeline::CommandPipeline(Context &context, bool use_cache)
-    : stop_(context.stop.get_token()), pipeline_(context.registry, options_for(context, use_cache)),
+CommandPipeline::CommandPipeline(Context &context, bool use_cache, bool release_imported_voxels)
+    : stop_(context.stop.get_token()),
+      pipeline_(context.registry, options_for(context, use_cache, release_imported_voxels)),
       on_interrupt_(context.stop.get_token(), std::function<void()>([this] { pipeline_.cancel_all(); }))
 {
 }

@@ -15,7 +15,9 @@ namespace arbor::cli {
 
 class CommandPipeline {
 public:
-    CommandPipeline(Context &context, bool use_cache);
+    // `release_imported_voxels`: PipelineOptions::release_imported_voxels,
+    // for a command that filters once and never reads the input again.
+    CommandPipeline(Context &context, bool use_cache, bool release_imported_voxels = false);
     pipeline::Pipeline &operator*() { return pipeline_; }
     pipeline::Pipeline *operator->() { return &pipeline_; }
 

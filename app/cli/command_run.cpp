@@ -106,6 +106,14 @@ pipeline::Document session_of(pipeline::Document d, const pipeline::ImportResult
     return d;
 }
 
+// The import without its voxels: what the report and the session say of it.
+std::shared_ptr<const pipeline::ImportResult> description_of(const pipeline::ImportResult &import)
+{
+    auto d = std::make_shared<pipeline::ImportResult>(import);
+    d->volume.reset();
+    return d;
+}
+
 } // namespace
 
 void add_run_command(CLI::App &app, Context &context)
@@ -143,7 +151,9 @@ void add_run_command(CLI::App &app, Context &context)
         const std::string ext = output.extension().string();
         if (ext != ".png" && ext != ".exr")
             throw std::invalid_argument(output.string() + ": images are written as .png or .exr");
-        CommandPipeline p(context, !a->input.no_cache());
+        // The input is filtered once; its voxels need not stay beside the
+        // filtered ones through the tree and the render.
+        CommandPipeline p(context, !a->input.no_cache(), /*release_imported_voxels=*/true);
         const pipeline::PluginCatalog &catalog = p->catalog();
 
         pipeline::Document base = base_document(*a, catalog);
@@ -170,6 +180,8 @@ void add_run_command(CLI::App &app, Context &context)
             a->look.apply(d.appearance, point, catalog);
             a->view.apply(d.view, catalog);
             p->set_document(d);
+            if (!report.import)
+                report.import = description_of(*p.run<Stage::Import>());
 
             RenderedRun run;
             run.name = point.name;
@@ -192,13 +204,12 @@ void add_run_command(CLI::App &app, Context &context)
             run.coverage = io::covered_fraction(run.render->image);
             if (!a->save_session.empty()) {
                 const fs::path s = sweep ? beside(a->save_session, "-" + point.name) : fs::path(a->save_session);
-                pipeline::write_session(s, session_of(run.document, *p.run<Stage::Import>()), catalog);
+                pipeline::write_session(s, session_of(run.document, *report.import), catalog);
                 report.session = sweep ? fs::path() : s;
             }
             run.write_seconds = watch.lap();
             report.runs.push_back(std::move(run));
         }
-        report.import = p.run<Stage::Import>();
         report.filtered = p.run<Stage::Filter>();
         report.tree = p.run<Stage::ContourTree>();
 

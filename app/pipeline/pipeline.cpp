@@ -179,12 +179,16 @@ std::shared_ptr<Job> Pipeline::ensure_locked(Stage stage, const std::shared_ptr<
         upstream.push_back(ensure_locked(u, document));
     auto job = std::make_shared<Job>(stage, ++job_counter_, options_.progress, options_.log);
     slot.active.emplace_back(key, job);
-    auto exited = std::make_shared<std::atomic<bool>>(false);
-    workers_.push_back({job, exited,
-                        std::thread([this, job, document, upstream = std::move(upstream), key, exited]() mutable {
-                            execute(job, std::move(document), std::move(upstream), key);
-                            exited->store(true, std::memory_order_release);
-                        })});
+    auto exit = std::make_unique<Worker::Exit>();
+    Worker::Exit *leaving = exit.get();
+    std::thread thread([this, job, document, upstream = std::move(upstream), key, leaving]() mutable {
+        execute(job, std::move(document), std::move(upstream), key);
+        if (job->state() == JobState::Failed)
+            leaving->failed = std::move(job);
+        job.reset();
+        leaving->exited.store(true, std::memory_order_release);
+    });
+    workers_.push_back({std::move(exit), std::move(thread)});
     return job;
 }
 
@@ -206,7 +210,8 @@ void Pipeline::execute(const std::shared_ptr<Job> &job, std::shared_ptr<const Do
         throw_if_stopped(job->stop_token());
         job->start();
         std::shared_ptr<const void> result = compute_stage(job->stage(), context);
-        std::shared_ptr<const void> replaced; // freed below, not under the lock (it may be gigabytes)
+        // Freed below, not under the lock (they may be gigabytes).
+        std::shared_ptr<const void> replaced, released;
         {
             std::lock_guard lock(mutex_);
             ++slot.runs;
@@ -218,7 +223,12 @@ void Pipeline::execute(const std::shared_ptr<Job> &job, std::shared_ptr<const Do
                 slot.has_result = true;
             }
             std::erase_if(slot.active, [&](const auto &entry) { return entry.second == job; });
+            if (job->stage() == Stage::Filter && options_.release_imported_voxels)
+                released = release_imported_voxels_locked(context.inputs[index_of(Stage::Import)], result);
         }
+        // Released voxels are gone before the stages downstream start.
+        context.inputs = {};
+        released.reset();
         job->succeed(std::move(result));
     } catch (const Cancelled &) {
         leave();
@@ -229,12 +239,26 @@ void Pipeline::execute(const std::shared_ptr<Job> &job, std::shared_ptr<const Do
     }
 }
 
+std::shared_ptr<const void> Pipeline::release_imported_voxels_locked(const std::shared_ptr<const void> &imported,
+                                                                    const std::shared_ptr<const void> &filtered)
+{
+    Slot &import = *slots_[index_of(Stage::Import)];
+    const auto &in = *std::static_pointer_cast<const ImportResult>(imported);
+    const auto &out = *std::static_pointer_cast<const FilterResult>(filtered);
+    // Only the import this filter read, and only when the chain made new
+    // voxels (an empty chain passes the import's own on).
+    if (import.result != imported || out.volume == in.volume)
+        return nullptr;
+    import.has_result = false;
+    return std::move(import.result);
+}
+
 void Pipeline::reap_locked()
 {
     // Only threads that are through: joining is then immediate (a front's
     // thread calls this, under the lock every accessor takes).
     for (auto it = workers_.begin(); it != workers_.end();) {
-        if (it->exited->load(std::memory_order_acquire)) {
+        if (it->exit->exited.load(std::memory_order_acquire)) {
             it->thread.join();
             it = workers_.erase(it);
         } else {

@@ -49,6 +49,12 @@ struct PipelineOptions {
     // (the log then goes to the host log).
     ProgressSink *progress = nullptr;
     LogSink *log = nullptr;
+    // A one-shot front (`arbor run`) sets it: once a filter chain has made
+    // a volume of its own, the imported voxels are let go - the import's
+    // result is dropped, so the filtered volume, the tree and the render do
+    // not share the memory with the input.  A later request of the import
+    // (or of a filter after a change of the chain) imports again.
+    bool release_imported_voxels = false;
     // Added to the nice value of every job's thread (core/thread_priority.hpp):
     // the workstation's UI stays responsive while jobs use every core.
     int worker_nice = 0;
@@ -131,10 +137,18 @@ public:
 private:
     struct Slot; // per stage: result, active jobs, plugin instances, the lock its jobs take
     struct Worker {
-        std::shared_ptr<Job> job;
-        // Set as the thread's last act, after its job's inputs were let go:
-        // joining it then cannot wait on freeing a large result.
-        std::shared_ptr<std::atomic<bool>> exited;
+        // What the thread leaves as its last act.  It lets go of its job, so
+        // that a finished job's result lives only as long as those who asked
+        // for it hold it; a failed job is handed over here instead and let
+        // go by the front that reaps the worker (the error may be in a
+        // front's handler, and the exception's count is one TSan cannot
+        // see).  Then `exited` is set: joining cannot wait on freeing a
+        // large result.
+        struct Exit {
+            std::shared_ptr<Job> failed;
+            std::atomic<bool> exited{false};
+        };
+        std::unique_ptr<Exit> exit; // outlives the thread: joined before it goes
         std::thread thread;
     };
 
@@ -144,6 +158,11 @@ private:
     std::shared_ptr<const void> latest_result(Stage stage) const;
     arbor_camera camera_for(const Document &document, const FilterResult &filtered) const;
     void reap_locked();
+    // PipelineOptions::release_imported_voxels: drops the import's result
+    // after a filter job made new voxels from it; returns it, to be freed
+    // outside the lock.
+    std::shared_ptr<const void> release_imported_voxels_locked(const std::shared_ptr<const void> &imported,
+                                                               const std::shared_ptr<const void> &filtered);
     void update(const Document &resolved);
     template <class T> void set_part(T Document::*part, const T &value);
     Document resolve(const Document &document) const;

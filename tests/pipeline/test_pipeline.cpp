@@ -199,6 +199,52 @@ TEST_F(PipelineStages, ResultsAreSnapshotsThatOutliveTheirSuccessors)
     EXPECT_NE(pipeline.latest<Stage::Render>()->image.rgba, copy.rgba);
 }
 
+// release_imported_voxels (`arbor run`): the input's voxels go once a filter
+// made its own, and come back by importing again when they are needed.
+TEST(Pipeline, ReleasedImportedVoxelsAreFreedAfterTheFilterAndImportedAgainWhenNeeded)
+{
+    PipelineOptions options;
+    options.release_imported_voxels = true;
+    Pipeline p(test::built_plugins(), options);
+    Document d = phantom_document();
+    d.filters = {{"gaussian", "", {{"sigma", "1"}}}};
+    p.set_document(d);
+    std::weak_ptr<const Volume> imported = p.run<Stage::Import>()->volume;
+    const auto filtered = p.run<Stage::Filter>();
+    ASSERT_NE(filtered->volume.get(), nullptr);
+    // The import's worker lets its job go as it exits, which may come a
+    // moment after the filter is done.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (!imported.expired() && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    EXPECT_TRUE(imported.expired()) << "the imported voxels are still held";
+    EXPECT_FALSE(p.is_current(Stage::Import));
+    EXPECT_TRUE(p.is_current(Stage::Filter));
+
+    // The rest of the run does not need them.
+    p.run<Stage::Render>();
+    EXPECT_EQ(runs(p).at("import"), 1u);
+
+    // Another filter reads the input again: imported a second time, and the
+    // result is the one a pipeline that kept the voxels computes.
+    d.filters[0].params["sigma"] = "2";
+    p.set_document(d);
+    const auto refiltered = p.run<Stage::Filter>();
+    EXPECT_EQ(runs(p).at("import"), 2u);
+    Pipeline keeping(test::built_plugins());
+    keeping.set_document(d);
+    const auto reference = keeping.run<Stage::Filter>();
+    ASSERT_EQ(refiltered->volume->byte_size(), reference->volume->byte_size());
+    EXPECT_EQ(std::memcmp(refiltered->volume->data(), reference->volume->data(), reference->volume->byte_size()), 0);
+    EXPECT_NE(keeping.latest<Stage::Import>(), nullptr); // by default the import stays
+
+    // An empty chain passes the import's own voxels on: nothing to release.
+    d.filters.clear();
+    p.set_document(d);
+    p.run<Stage::Filter>();
+    EXPECT_TRUE(p.is_current(Stage::Import));
+}
+
 TEST(Pipeline, BadChoicesAreRefusedAndLeaveTheDocumentAsItWas)
 {
     Pipeline p(test::built_plugins());
