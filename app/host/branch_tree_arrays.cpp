@@ -81,6 +81,10 @@ const arbor_branch_tree &BranchTreeArrays::link()
         record_.relative_measures = all_relative_.data();
     }
     record_.importance = importance.empty() ? nullptr : importance.data();
+    record_.value_scale = value_scale;
+    record_.value_offset = value_offset;
+    unit_.assign(value_unit.c_str(), value_unit.c_str() + value_unit.size() + 1);
+    record_.value_unit = unit_.data();
     return record_;
 }
 

@@ -27,6 +27,9 @@ struct BranchTreeArrays {
     // ids, and [n] values of each.
     std::vector<std::string> extra_ids;
     std::vector<std::vector<double>> extra;
+    // The volume's stored -> physical mapping (ABI 1.4 fields of the record).
+    double value_scale = 1.0, value_offset = 0.0;
+    std::string value_unit;
 
     // Every vector sized for n branches (values zero, kinds maximum, root's parent -1).
     void resize(std::size_t n);
@@ -37,6 +40,7 @@ private:
     std::vector<uint32_t> depth_, child_offsets_, children_;
     std::vector<double> all_measures_, all_relative_; // with the extra columns
     std::vector<const char *> ids_;
+    std::vector<char> unit_; // value_unit with its NUL: a heap buffer, kept by moves
     arbor_branch_tree record_{};
 };
 

@@ -33,6 +33,9 @@ BranchTreeRecord::BranchTreeRecord(const topology::ContourTree &tree, const topo
         }
         a.importance[k] = std::isfinite(b.importance) ? b.importance : 1.0;
     }
+    a.value_scale = volume.mapping().scale;
+    a.value_offset = volume.mapping().offset;
+    a.value_unit = volume.mapping().unit;
     if (shapes) {
         a.extra_ids = {ARBOR_MEASURE_THICKNESS, ARBOR_MEASURE_COMPACTNESS};
         a.extra.assign(2, std::vector<double>(n, 0.0));

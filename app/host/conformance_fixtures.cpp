@@ -72,6 +72,12 @@ arbor_measure_rows FixtureTree::rows() const
     r.measure_ids = BranchTreeArrays::kMeasureIds;
     r.measures = record().measures;
     r.relative_measures = record().relative_measures;
+    r.extremum_kind = record().extremum_kind;
+    r.saddle_value = record().saddle_value;
+    r.extremum_value = record().extremum_value;
+    r.root_row = 0;
+    r.value_scale = 1.0;
+    r.value_unit = "";
     return r;
 }
 
@@ -79,6 +85,9 @@ arbor_measure_rows FixtureTree::schema() const
 {
     arbor_measure_rows r = rows();
     r.row_count = 0;
+    r.extremum_kind = nullptr;
+    r.saddle_value = r.extremum_value = nullptr;
+    r.root_row = -1;
     return r;
 }
 

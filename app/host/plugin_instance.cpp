@@ -2,11 +2,37 @@
 
 #include "core/cancelled.hpp"
 
+#include <map>
+
 namespace arbor {
+
+namespace {
+
+// One mutex per serialised plugin id, for the life of the process.
+std::mutex &plugin_mutex(const std::string &id)
+{
+    static std::mutex table_mutex;
+    static std::map<std::string, std::unique_ptr<std::mutex>> table;
+    std::lock_guard lock(table_mutex);
+    std::unique_ptr<std::mutex> &m = table[id];
+    if (!m)
+        m = std::make_unique<std::mutex>();
+    return *m;
+}
+
+} // namespace
 
 PluginInstance::PluginInstance(arbor_plugin *plugin, std::unique_ptr<HostIdentity> host)
     : plugin_(plugin), host_(std::move(host))
 {
+    if (plugin_ && plugin_->descriptor && plugin_->descriptor->id &&
+        (plugin_->descriptor->flags & ARBOR_PLUGIN_FLAG_SERIALIZE))
+        serial_ = &plugin_mutex(plugin_->descriptor->id);
+}
+
+std::unique_lock<std::mutex> PluginInstance::serial() const
+{
+    return serial_ ? std::unique_lock<std::mutex>(*serial_) : std::unique_lock<std::mutex>();
 }
 
 PluginInstance::~PluginInstance()
@@ -15,7 +41,7 @@ PluginInstance::~PluginInstance()
 }
 
 PluginInstance::PluginInstance(PluginInstance &&other) noexcept
-    : plugin_(other.plugin_), host_(std::move(other.host_))
+    : plugin_(other.plugin_), serial_(other.serial_), host_(std::move(other.host_))
 {
     other.plugin_ = nullptr;
 }
@@ -25,6 +51,7 @@ PluginInstance &PluginInstance::operator=(PluginInstance &&other) noexcept
     if (this != &other) {
         release();
         plugin_ = other.plugin_;
+        serial_ = other.serial_;
         host_ = std::move(other.host_);
         other.plugin_ = nullptr;
     }
@@ -33,13 +60,16 @@ PluginInstance &PluginInstance::operator=(PluginInstance &&other) noexcept
 
 void PluginInstance::release()
 {
-    if (plugin_)
+    if (plugin_) {
+        const auto lock = serial();
         plugin_->destroy(plugin_);
+    }
     plugin_ = nullptr;
 }
 
 const arbor_params_v1 *PluginInstance::params() const
 {
+    const auto lock = serial();
     const auto *p =
         static_cast<const arbor_params_v1 *>(plugin_->get_interface(plugin_, ARBOR_INTERFACE_PARAMS));
     if (p && (!p->count || !p->describe || !p->get || !p->set))
@@ -50,7 +80,9 @@ const arbor_params_v1 *PluginInstance::params() const
 std::vector<const arbor_param_desc *> PluginInstance::param_descriptions() const
 {
     std::vector<const arbor_param_desc *> out;
-    if (const arbor_params_v1 *p = params())
+    const arbor_params_v1 *p = params();
+    const auto lock = serial();
+    if (p)
         for (uint32_t i = 0, n = p->count(plugin_); i < n; ++i)
             if (const arbor_param_desc *d = p->describe(plugin_, i))
                 out.push_back(d);
@@ -70,7 +102,12 @@ void PluginInstance::set_param(const std::string &param_id, const arbor_param_va
     const arbor_params_v1 *p = params();
     if (!p)
         throw PluginError(ARBOR_ERROR_NOT_FOUND, id() + " has no parameters");
-    check(p->set(plugin_, param_id.c_str(), &value), "setting parameter '" + param_id + "'");
+    arbor_status s;
+    {
+        const auto lock = serial();
+        s = p->set(plugin_, param_id.c_str(), &value);
+    }
+    check(s, "setting parameter '" + param_id + "'");
 }
 
 arbor_param_value PluginInstance::get_param(const std::string &param_id) const
@@ -80,12 +117,18 @@ arbor_param_value PluginInstance::get_param(const std::string &param_id) const
         throw PluginError(ARBOR_ERROR_NOT_FOUND, id() + " has no parameters");
     arbor_param_value v{};
     v.struct_size = sizeof(v);
-    check(p->get(plugin_, param_id.c_str(), &v), "reading parameter '" + param_id + "'");
+    arbor_status s;
+    {
+        const auto lock = serial();
+        s = p->get(plugin_, param_id.c_str(), &v);
+    }
+    check(s, "reading parameter '" + param_id + "'");
     return v;
 }
 
 std::string PluginInstance::last_error() const
 {
+    const auto lock = serial();
     const char *e = plugin_->last_error ? plugin_->last_error(plugin_) : nullptr;
     return e ? e : "";
 }

@@ -8,6 +8,7 @@
 #include <arbor/arbor.h>
 
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -41,7 +42,11 @@ public:
     template <class Table>
     const Table &interface(const char *interface_id) const
     {
-        const void *t = plugin_->get_interface(plugin_, interface_id);
+        const void *t = nullptr;
+        {
+            const auto lock = serial();
+            t = plugin_->get_interface(plugin_, interface_id);
+        }
         if (!t)
             throw PluginError(ARBOR_ERROR_UNSUPPORTED,
                               id() + " does not offer interface " + interface_id);
@@ -55,6 +60,11 @@ public:
     void set_param(const std::string &param_id, const arbor_param_value &value);
     arbor_param_value get_param(const std::string &param_id) const;
 
+    // Held around every call into the plugin: for a plugin whose descriptor
+    // sets ARBOR_PLUGIN_FLAG_SERIALIZE a lock on the one mutex all its
+    // instances in this process share, else no lock at all.
+    std::unique_lock<std::mutex> serial() const;
+
     // Messages the plugin logs go to `sink` (nullptr: the host log).
     void route_log(LogSink *sink) { host_->route_log(sink); }
 
@@ -67,6 +77,7 @@ public:
 private:
     void release();
     arbor_plugin *plugin_ = nullptr;
+    std::mutex *serial_ = nullptr; // ARBOR_PLUGIN_FLAG_SERIALIZE: the plugin's mutex
     std::unique_ptr<HostIdentity> host_;
 };
 

@@ -9,14 +9,41 @@ namespace arbor {
 
 namespace {
 
+// The columns and per-row arrays behind the arbor_measure_rows records of one
+// run, reused from one batch to the next.
 struct MeasureTable {
     const char *ids[topology::kMeasureCount];
-    std::vector<double> absolute, relative;
+    std::vector<double> absolute, relative, saddle, extremum;
+    std::vector<arbor_extremum_kind> kind;
+    int32_t root_row = -1;
+    ValueMapping mapping;
 
-    MeasureTable()
+    explicit MeasureTable(ValueMapping m) : mapping(std::move(m))
     {
-        for (int m = 0; m < topology::kMeasureCount; ++m)
-            ids[m] = topology::measure_id(m);
+        for (int i = 0; i < topology::kMeasureCount; ++i)
+            ids[i] = topology::measure_id(i);
+    }
+
+    void fill(const std::vector<topology::BranchMeasures> &rows)
+    {
+        const std::size_t width = topology::kMeasureCount;
+        absolute.resize(rows.size() * width);
+        relative.resize(rows.size() * width);
+        saddle.resize(rows.size());
+        extremum.resize(rows.size());
+        kind.resize(rows.size());
+        root_row = -1;
+        for (std::size_t r = 0; r < rows.size(); ++r) {
+            for (std::size_t c = 0; c < width; ++c) {
+                absolute[r * width + c] = rows[r].absolute[c];
+                relative[r * width + c] = rows[r].relative[c];
+            }
+            saddle[r] = rows[r].saddle_value;
+            extremum[r] = rows[r].extremum_value;
+            kind[r] = rows[r].kind == topology::BranchKind::Minimum ? ARBOR_EXTREMUM_MINIMUM : ARBOR_EXTREMUM_MAXIMUM;
+            if (rows[r].kind == topology::BranchKind::Root)
+                root_row = static_cast<int32_t>(r);
+        }
     }
 
     arbor_measure_rows rows(uint32_t count) const
@@ -28,6 +55,13 @@ struct MeasureTable {
         r.measure_ids = ids;
         r.measures = count ? absolute.data() : nullptr;
         r.relative_measures = count ? relative.data() : nullptr;
+        r.extremum_kind = count ? kind.data() : nullptr;
+        r.saddle_value = count ? saddle.data() : nullptr;
+        r.extremum_value = count ? extremum.data() : nullptr;
+        r.root_row = count ? root_row : -1;
+        r.value_scale = mapping.scale;
+        r.value_offset = mapping.offset;
+        r.value_unit = mapping.unit.c_str();
         return r;
     }
 };
@@ -42,27 +76,30 @@ std::string describe(const topology::BranchMeasures &m)
 
 } // namespace
 
-topology::ImportanceFn simplifier_importance(PluginInstance &simplifier)
+topology::ImportanceFn simplifier_importance(PluginInstance &simplifier, const ValueMapping &mapping)
 {
     const auto &table = simplifier.interface<arbor_simplifier_v1>(ARBOR_INTERFACE_SIMPLIFIER);
-    auto measures = std::make_shared<MeasureTable>();
+    auto measures = std::make_shared<MeasureTable>(mapping);
     const arbor_measure_rows schema = measures->rows(0);
-    simplifier.check(table.prepare(simplifier.get(), &schema), "preparing the simplifier");
+    arbor_status prepared;
+    {
+        const auto lock = simplifier.serial();
+        prepared = table.prepare(simplifier.get(), &schema);
+    }
+    simplifier.check(prepared, "preparing the simplifier");
     return [&simplifier, &table, measures](const std::vector<topology::BranchMeasures> &rows,
                                            std::vector<double> &out) {
         MeasureTable &m = *measures;
-        const std::size_t width = topology::kMeasureCount;
-        m.absolute.resize(rows.size() * width);
-        m.relative.resize(rows.size() * width);
-        for (std::size_t r = 0; r < rows.size(); ++r)
-            for (std::size_t c = 0; c < width; ++c) {
-                m.absolute[r * width + c] = rows[r].absolute[c];
-                m.relative[r * width + c] = rows[r].relative[c];
-            }
+        m.fill(rows);
         // Rows the plugin leaves unset stay NaN and are refused below.
         out.assign(rows.size(), std::numeric_limits<double>::quiet_NaN());
         const arbor_measure_rows batch = m.rows(static_cast<uint32_t>(rows.size()));
-        simplifier.check(table.importance(simplifier.get(), &batch, out.data()), "ranking branches");
+        arbor_status ranked;
+        {
+            const auto lock = simplifier.serial();
+            ranked = table.importance(simplifier.get(), &batch, out.data());
+        }
+        simplifier.check(ranked, "ranking branches");
         for (std::size_t r = 0; r < rows.size(); ++r)
             if (!std::isfinite(out[r]) || out[r] < 0.0)
                 throw PluginError(ARBOR_ERROR_OUT_OF_RANGE,

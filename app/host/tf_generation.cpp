@@ -1,5 +1,7 @@
 #include "tf_generation.hpp"
 
+#include "depiction_application.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -89,7 +91,12 @@ void depict(PluginInstance &depictor, const arbor_depiction_request &request, De
 {
     const auto &table = depictor.interface<arbor_depictor_v1>(ARBOR_INTERFACE_DEPICTOR);
     Task task(progress, stop);
-    depictor.check(table.depict(depictor.get(), &request, &out.record(), task.get()), "depicting the branches");
+    arbor_status s;
+    {
+        const auto lock = depictor.serial();
+        s = table.depict(depictor.get(), &request, &out.record(), task.get());
+    }
+    depictor.check(s, "depicting the branches");
     const arbor_depiction &d = out.record();
     for (uint32_t b = 0; b < d.branch_count; ++b) {
         const float v[] = {d.opacity_at_saddle[b], d.opacity_at_extremum[b], d.saturation[b]};
@@ -111,7 +118,13 @@ void generate_transfer_functions(PluginInstance &generator, const arbor_tf_reque
     Task task(progress, stop);
     arbor_tf_set &set = out.record();
     set.points = nullptr;
-    generator.check(table.generate(generator.get(), &request, &set, task.get()), "generating transfer functions");
+    set.depiction_by_host = 0;
+    arbor_status s;
+    {
+        const auto lock = generator.serial();
+        s = table.generate(generator.get(), &request, &set, task.get());
+    }
+    generator.check(s, "generating transfer functions");
     const auto refuse = [&](const std::string &what) {
         throw PluginError(ARBOR_ERROR_OUT_OF_RANGE, generator.id() + " returned " + what);
     };
@@ -133,7 +146,17 @@ void generate_transfer_functions(PluginInstance &generator, const arbor_tf_reque
         for (float x : p.rgba)
             if (!(x >= 0.0f && x <= 1.0f) || !std::isfinite(p.value))
                 refuse("a control point outside [0, 1] or at a non-finite value");
+    for (uint32_t b = 0; b < set.branch_count; ++b)
+        for (uint32_t i = set.point_offsets[b] + 1; i < set.point_offsets[b + 1]; ++i)
+            if (out.points_[i].value < out.points_[i - 1].value)
+                refuse("control points of branch " + std::to_string(b) + " out of value order (" +
+                       std::to_string(out.points_[i - 1].value) + " before " + std::to_string(out.points_[i].value) +
+                       "); points ascend in value");
     set.points = out.points_.data(); // the task's memory goes with the task
+    // A generator that leaves the depiction to the host gets it applied here,
+    // as depictor.h says, to the table and the points alike.
+    if (set.depiction_by_host && request.depiction && request.tree)
+        apply_depiction(*request.depiction, *request.tree, set, out.points_.data());
     for (uint32_t b = 0; b < set.branch_count; ++b)
         out.notes_[std::size_t{b + 1} * TransferFunctions::kNoteSize - 1] = '\0'; // a note ends in its slot
 }

@@ -190,7 +190,7 @@ std::shared_ptr<const void> decomposition(StageContext &c)
     PluginSlot::Lease simplifier = c.plugins.lease(c.document.simplifier, &c.job);
     r->simplifier = c.document.simplifier;
     r->simplifier_name = simplifier->descriptor().name;
-    const topology::ImportanceFn importance = simplifier_importance(*simplifier);
+    const topology::ImportanceFn importance = simplifier_importance(*simplifier, volume.mapping());
     const std::string activity = "branches by " + short_name(r->simplifier.id);
     const std::stop_token stop = c.stop();
     r->branches = topology::decompose_branches(tree->tree, field_of(volume), importance, [&](double f) {
@@ -336,6 +336,15 @@ std::shared_ptr<const void> transfer_functions(StageContext &c)
                 " branches (made from " + stored.source + ") are not the branches " + cut.decomposition->simplifier.id +
                 " keeps in " + c.input<Stage::Filter>()->source + " with " + cut.effective().describe() +
                 "; regenerate them with `arbor tf`");
+        if (!stored.rebaked.empty()) {
+            std::string labels;
+            for (const uint32_t b : stored.rebaked)
+                labels += (labels.empty() ? "" : ", ") + std::to_string(b);
+            c.job.write(ARBOR_LOG_INFO, "",
+                        a.transfer_functions_file.string() + ": the control points of branch" +
+                            (stored.rebaked.size() > 1 ? "es " : " ") + labels +
+                            " were edited; their lookup tables were rebaked from the points");
+        }
         r->file = a.transfer_functions_file;
         r->functions = std::move(stored.functions);
         r->seconds = watch.lap();
@@ -525,7 +534,11 @@ std::shared_ptr<const void> legend(StageContext &c)
     PluginSlot::Lease depictor = c.plugins.lease(a.legend, &c.job);
     const auto &table = depictor->interface<arbor_depictor_v1>(ARBOR_INTERFACE_DEPICTOR);
     Task task(&c.job, c.stop());
-    const arbor_status s = table.legend(depictor->get(), &request, &image, task.get());
+    arbor_status s;
+    {
+        const auto lock = depictor->serial();
+        s = table.legend(depictor->get(), &request, &image, task.get());
+    }
     if (s == ARBOR_ERROR_UNSUPPORTED)
         throw std::invalid_argument(depictor->id() + " draws no legend");
     depictor->check(s, "drawing the legend");

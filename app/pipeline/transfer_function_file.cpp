@@ -1,5 +1,7 @@
 #include "transfer_function_file.hpp"
 
+#include "control_points.hpp"
+
 #include "io/json_writer.hpp"
 
 #include <nlohmann/json.hpp>
@@ -114,6 +116,9 @@ void write_transfer_functions(const std::filesystem::path &path, const TransferF
                     write_rgba(j, p.rgba);
                 }
             }
+            // Tells points edited later from these: edited points are rebaked.
+            j.field("points_digest", points_digest(tf.points().data() + tf.point_offsets()[b],
+                                                   tf.point_offsets()[b + 1] - tf.point_offsets()[b]));
             const io::JsonWriter::Scope entries = j.array("lut");
             for (uint32_t i = 0; i < tf.lut_size(); ++i)
                 write_rgba(j, lut + 4 * i);
@@ -166,14 +171,31 @@ StoredTransferFunctions read_transfer_functions(const std::filesystem::path &pat
             const double lo = br.at("domain").at(0).get<double>(), hi = br.at("domain").at(1).get<double>();
             if (!(lo <= hi))
                 throw bad("branch " + std::to_string(b) + ": domain is not an interval");
-            out.functions->assign(b, {lo, hi}, rgba.data());
+            const std::size_t first = points.size();
             for (const auto &p : br.at("points")) {
                 arbor_tf_point pt{};
                 pt.value = p.at("value").get<double>();
-                for (int c = 0; c < 4; ++c)
+                if (!std::isfinite(pt.value))
+                    throw bad("branch " + std::to_string(b) + ": a control point at a value that is not a number");
+                for (int c = 0; c < 4; ++c) {
                     pt.rgba[c] = p.at("rgba").at(static_cast<std::size_t>(c)).get<float>();
+                    if (!(pt.rgba[c] >= 0.0f && pt.rgba[c] <= 1.0f))
+                        throw bad("branch " + std::to_string(b) + ": a control point's colour outside [0, 1]");
+                }
+                if (points.size() > first && pt.value < points.back().value)
+                    throw bad("branch " + std::to_string(b) + ": control points out of value order (" +
+                              std::to_string(points.back().value) + " before " + std::to_string(pt.value) + ")");
                 points.push_back(pt);
             }
+            // Points edited since they were written win over the table: the
+            // table is rebaked from them (transfer_function.h).
+            const std::size_t count = points.size() - first;
+            if (count > 0 && br.contains("points_digest") &&
+                br.at("points_digest").get<std::string>() != points_digest(points.data() + first, count)) {
+                bake_from_points(points.data() + first, count, {lo, hi}, lut, rgba.data());
+                out.rebaked.push_back(b);
+            }
+            out.functions->assign(b, {lo, hi}, rgba.data());
             offsets.push_back(static_cast<uint32_t>(points.size()));
         }
         out.functions->assign_points(std::move(offsets), std::move(points));

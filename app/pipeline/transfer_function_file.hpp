@@ -3,7 +3,9 @@
 // its value domain, control points (the editable form) and the baked RGBA
 // lookup table (what renderers use), plus everything needed to reproduce
 // it: the generator and depictor with their parameters, the simplifier and
-// its cut.
+// its cut.  Each branch's points carry a digest: a branch whose points no
+// longer match it was edited, and its table is rebaked from the points
+// (control_points.hpp), so an edited point is never silently ignored.
 #pragma once
 
 #include "stage_results.hpp"
@@ -28,6 +30,9 @@ struct StoredTransferFunctions {
     std::string source, simplifier_id, cut;
     std::vector<int64_t> extremum_vertex;
     std::shared_ptr<TransferFunctions> functions;
+    // Branches whose control points were edited after the file was written:
+    // their tables were rebaked from the points.
+    std::vector<uint32_t> rebaked;
 };
 
 // Throws std::invalid_argument naming the file and what is wrong with it.

@@ -98,6 +98,9 @@ public:
         root_.absolute[kRelativeHypervolume] = root_.absolute[kHypervolume];
         for (int m = 0; m < kMeasureCount; ++m)
             root_.relative[m] = root_.absolute[m] > 0 ? 1.0 : 0.0;
+        root_.kind = BranchKind::Root;
+        root_.saddle_value = f_min_;
+        root_.extremum_value = f_max_;
     }
 
     BranchDecomposition run(const ProgressFn &progress)
@@ -113,6 +116,8 @@ public:
         root.saddle_node = gmin_;
         root.importance = std::numeric_limits<double>::infinity();
         root.measures = root_.absolute;
+        root.saddle_value = f_min_;
+        root.extremum_value = f_max_;
         out_.branches.push_back(root);
         {
             Components comp(tree_.node_count());
@@ -147,6 +152,9 @@ private:
         m.absolute[kRelativeHypervolume] = std::max(0.0, basin ? r.count * fs - r.sum : r.sum - r.count * fs);
         for (int i = 0; i < kMeasureCount; ++i)
             m.relative[i] = root_.absolute[i] > 0 ? m.absolute[i] / root_.absolute[i] : 0.0;
+        m.kind = basin ? BranchKind::Minimum : BranchKind::Maximum;
+        m.saddle_value = fs;
+        m.extremum_value = regions_.node_value(extremum);
         return m;
     }
 
@@ -215,6 +223,8 @@ private:
                     b.saddle_node = x;
                     b.importance = values[i];
                     b.measures = rows[i].absolute;
+                    b.saddle_value = rows[i].saddle_value;
+                    b.extremum_value = rows[i].extremum_value;
                     out_.branches.push_back(b);
                 }
             }

@@ -55,19 +55,26 @@ enum Measure : int {
 // Stable ids, the same as the SDK's ARBOR_MEASURE_* strings.
 const char *measure_id(int measure);
 
+enum class BranchKind : uint8_t { Root, Maximum, Minimum };
+
+// A candidate branch as an importance function sees it: its measures and its
+// extremum.  The root's row (the component of the sweep's global extremum,
+// whose importance is ignored) has kind Root, the global minimum as its
+// saddle value and the global maximum as its extremum value.
 struct BranchMeasures {
     std::array<double, kMeasureCount> absolute{};
     std::array<double, kMeasureCount> relative{}; // absolute / the root's (0 when that is 0)
+    BranchKind kind = BranchKind::Maximum;
+    double saddle_value = 0.0, extremum_value = 0.0;
 };
 
 // Importance of candidate branches: fill out[i] for rows[i].  Larger is more
-// important; must be finite and >= 0 (checked).
+// important; must be finite and >= 0 (checked).  Each row's importance
+// depends on that row alone.
 using ImportanceFn = std::function<void(const std::vector<BranchMeasures> &rows, std::vector<double> &out)>;
 
 // The default: relative persistence.
 ImportanceFn persistence_importance();
-
-enum class BranchKind : uint8_t { Root, Maximum, Minimum };
 
 struct Branch {
     BranchKind kind = BranchKind::Root;
@@ -77,6 +84,7 @@ struct Branch {
     uint32_t depth = 0;
     double importance = 0.0; // +infinity for the root
     std::array<double, kMeasureCount> measures{}; // absolute; relative ones: BranchDecomposition::relative
+    double saddle_value = 0.0, extremum_value = 0.0; // the function there (the root: global min and max)
 };
 
 struct BranchDecomposition {

@@ -7,7 +7,7 @@
 #include <stddef.h>
 
 #if defined(__x86_64__) && defined(__LP64__)
-_Static_assert(sizeof(arbor_branch_tree) == 136, "size of arbor_branch_tree changed");
+_Static_assert(sizeof(arbor_branch_tree) == 160, "size of arbor_branch_tree changed");
 _Static_assert(_Alignof(arbor_branch_tree) == 8, "alignment of arbor_branch_tree changed");
 _Static_assert(offsetof(arbor_branch_tree, struct_size) == 0, "offset of arbor_branch_tree.struct_size changed");
 _Static_assert(offsetof(arbor_branch_tree, branch_count) == 4, "offset of arbor_branch_tree.branch_count changed");
@@ -28,6 +28,9 @@ _Static_assert(offsetof(arbor_branch_tree, measure_ids) == 104, "offset of arbor
 _Static_assert(offsetof(arbor_branch_tree, measures) == 112, "offset of arbor_branch_tree.measures changed");
 _Static_assert(offsetof(arbor_branch_tree, relative_measures) == 120, "offset of arbor_branch_tree.relative_measures changed");
 _Static_assert(offsetof(arbor_branch_tree, importance) == 128, "offset of arbor_branch_tree.importance changed");
+_Static_assert(offsetof(arbor_branch_tree, value_scale) == 136, "offset of arbor_branch_tree.value_scale changed");
+_Static_assert(offsetof(arbor_branch_tree, value_offset) == 144, "offset of arbor_branch_tree.value_offset changed");
+_Static_assert(offsetof(arbor_branch_tree, value_unit) == 152, "offset of arbor_branch_tree.value_unit changed");
 _Static_assert(sizeof(arbor_camera) == 96, "size of arbor_camera changed");
 _Static_assert(_Alignof(arbor_camera) == 8, "alignment of arbor_camera changed");
 _Static_assert(offsetof(arbor_camera, struct_size) == 0, "offset of arbor_camera.struct_size changed");
@@ -94,7 +97,7 @@ _Static_assert(offsetof(arbor_label_map, struct_size) == 0, "offset of arbor_lab
 _Static_assert(offsetof(arbor_label_map, label_count) == 4, "offset of arbor_label_map.label_count changed");
 _Static_assert(offsetof(arbor_label_map, dims) == 8, "offset of arbor_label_map.dims changed");
 _Static_assert(offsetof(arbor_label_map, labels) == 32, "offset of arbor_label_map.labels changed");
-_Static_assert(sizeof(arbor_measure_rows) == 40, "size of arbor_measure_rows changed");
+_Static_assert(sizeof(arbor_measure_rows) == 96, "size of arbor_measure_rows changed");
 _Static_assert(_Alignof(arbor_measure_rows) == 8, "alignment of arbor_measure_rows changed");
 _Static_assert(offsetof(arbor_measure_rows, struct_size) == 0, "offset of arbor_measure_rows.struct_size changed");
 _Static_assert(offsetof(arbor_measure_rows, row_count) == 4, "offset of arbor_measure_rows.row_count changed");
@@ -103,6 +106,14 @@ _Static_assert(offsetof(arbor_measure_rows, reserved0) == 12, "offset of arbor_m
 _Static_assert(offsetof(arbor_measure_rows, measure_ids) == 16, "offset of arbor_measure_rows.measure_ids changed");
 _Static_assert(offsetof(arbor_measure_rows, measures) == 24, "offset of arbor_measure_rows.measures changed");
 _Static_assert(offsetof(arbor_measure_rows, relative_measures) == 32, "offset of arbor_measure_rows.relative_measures changed");
+_Static_assert(offsetof(arbor_measure_rows, extremum_kind) == 40, "offset of arbor_measure_rows.extremum_kind changed");
+_Static_assert(offsetof(arbor_measure_rows, saddle_value) == 48, "offset of arbor_measure_rows.saddle_value changed");
+_Static_assert(offsetof(arbor_measure_rows, extremum_value) == 56, "offset of arbor_measure_rows.extremum_value changed");
+_Static_assert(offsetof(arbor_measure_rows, root_row) == 64, "offset of arbor_measure_rows.root_row changed");
+_Static_assert(offsetof(arbor_measure_rows, reserved1) == 68, "offset of arbor_measure_rows.reserved1 changed");
+_Static_assert(offsetof(arbor_measure_rows, value_scale) == 72, "offset of arbor_measure_rows.value_scale changed");
+_Static_assert(offsetof(arbor_measure_rows, value_offset) == 80, "offset of arbor_measure_rows.value_offset changed");
+_Static_assert(offsetof(arbor_measure_rows, value_unit) == 88, "offset of arbor_measure_rows.value_unit changed");
 _Static_assert(sizeof(arbor_param_desc) == 136, "size of arbor_param_desc changed");
 _Static_assert(_Alignof(arbor_param_desc) == 8, "alignment of arbor_param_desc changed");
 _Static_assert(offsetof(arbor_param_desc, struct_size) == 0, "offset of arbor_param_desc.struct_size changed");
@@ -246,7 +257,7 @@ _Static_assert(offsetof(arbor_tf_request, value_range) == 32, "offset of arbor_t
 _Static_assert(offsetof(arbor_tf_request, min_spacing) == 48, "offset of arbor_tf_request.min_spacing changed");
 _Static_assert(offsetof(arbor_tf_request, background_level) == 56, "offset of arbor_tf_request.background_level changed");
 _Static_assert(offsetof(arbor_tf_request, background_peak) == 64, "offset of arbor_tf_request.background_peak changed");
-_Static_assert(sizeof(arbor_tf_set) == 72, "size of arbor_tf_set changed");
+_Static_assert(sizeof(arbor_tf_set) == 80, "size of arbor_tf_set changed");
 _Static_assert(_Alignof(arbor_tf_set) == 8, "alignment of arbor_tf_set changed");
 _Static_assert(offsetof(arbor_tf_set, struct_size) == 0, "offset of arbor_tf_set.struct_size changed");
 _Static_assert(offsetof(arbor_tf_set, branch_count) == 4, "offset of arbor_tf_set.branch_count changed");
@@ -260,6 +271,8 @@ _Static_assert(offsetof(arbor_tf_set, points) == 48, "offset of arbor_tf_set.poi
 _Static_assert(offsetof(arbor_tf_set, notes) == 56, "offset of arbor_tf_set.notes changed");
 _Static_assert(offsetof(arbor_tf_set, note_size) == 64, "offset of arbor_tf_set.note_size changed");
 _Static_assert(offsetof(arbor_tf_set, reserved1) == 68, "offset of arbor_tf_set.reserved1 changed");
+_Static_assert(offsetof(arbor_tf_set, depiction_by_host) == 72, "offset of arbor_tf_set.depiction_by_host changed");
+_Static_assert(offsetof(arbor_tf_set, reserved2) == 76, "offset of arbor_tf_set.reserved2 changed");
 _Static_assert(sizeof(arbor_version) == 12, "size of arbor_version changed");
 _Static_assert(_Alignof(arbor_version) == 4, "alignment of arbor_version changed");
 _Static_assert(offsetof(arbor_version, major) == 0, "offset of arbor_version.major changed");

@@ -24,10 +24,17 @@ def fields(body):
     return names
 
 
+# Headers of helpers that are not part of the ABI (the host never sees their
+# records; their layout may depend on the includer's settings).
+HELPERS = {"param_check.h"}
+
+
 def record_bodies(folder):
-    """{name: body} of every struct in the headers of `folder`, in header order."""
+    """{name: body} of every struct in the ABI headers of `folder`, in header order."""
     structs = {}
     for header in sorted(pathlib.Path(folder).glob("*.h")):
+        if header.name in HELPERS:
+            continue
         text = header.read_text()
         for m in re.finditer(r"typedef struct (\w+) \{(.*?)\} \1;", text, re.S):
             structs[m.group(1)] = m.group(2)

@@ -1,6 +1,7 @@
 // The SDK headers (and the optional C++ layer) must compile as C++ with
 // -pedantic -Werror: C++ plugins and the host include them.
 #include <arbor/arbor.h>
+#include <arbor/param_check.h>
 #include <arbor/sdk/filter.hpp>
 #include <arbor/sdk/importer.hpp>
 

@@ -9,12 +9,15 @@
  * The file is also the template for third-party plugins.  It shows
  *   - the one exported symbol (ARBOR_PLUGIN_ENTRY) and its descriptor,
  *   - an instance record with its own last-error message,
- *   - the parameters interface (arbor.params/1) implemented by hand,
+ *   - the parameters interface (arbor.params/1) through arbor/param_check.h,
  *   - the kind's interface (arbor.filter/1) with argument checks that make
  *     `arbor plugin-check` pass,
  *   - progress reporting and cancellation through the task.
+ * sdk/docs/contract.md says who calls what, from which thread, and how long
+ * every pointer lives.
  */
 #include <arbor/arbor.h>
+#include <arbor/param_check.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -24,35 +27,38 @@
 /* ---- descriptor ------------------------------------------------------------ */
 
 static const arbor_plugin_descriptor window_descriptor = {
-    sizeof(arbor_plugin_descriptor),
-    ARBOR_PLUGIN_FLAG_NONE,
-    "org.arbor.example.window", /* reverse-DNS: never change it once released */
-    ARBOR_KIND_FILTER,
-    "Window (clamp)",
-    "1.0.0",
-    "Arbor",
-    "Clamps physical values to [low, high] before the contour tree is built; "
-    "example of a plugin written in plain C.",
-    ""};
+    .struct_size = sizeof(arbor_plugin_descriptor),
+    .flags = ARBOR_PLUGIN_FLAG_NONE,
+    .id = "org.arbor.example.window", /* reverse-DNS: never change it once released */
+    .kind = ARBOR_KIND_FILTER,
+    .name = "Window (clamp)",
+    .version = "1.0.0",
+    .vendor = "Arbor",
+    .description = "Clamps physical values to [low, high] before the contour tree is built; "
+                   "example of a plugin written in plain C.",
+    .url = "",
+};
 
 /* ---- parameters ------------------------------------------------------------ */
 
 enum { PARAM_LOW, PARAM_HIGH, PARAM_COUNT };
 
 static const arbor_param_desc window_params[PARAM_COUNT] = {
-    {sizeof(arbor_param_desc), ARBOR_PARAM_FLOAT, "low", "Low", "Window", "",
-     "Physical values below this become it (HU for CT)", 1, ARBOR_PARAM_FLAG_NONE,
-     -1e9, 1e9, {-1e9, 0, 0, 0}, 0, 0, NULL, NULL, ""},
-    {sizeof(arbor_param_desc), ARBOR_PARAM_FLOAT, "high", "High", "Window", "",
-     "Physical values above this become it (HU for CT)", 1, ARBOR_PARAM_FLAG_NONE,
-     -1e9, 1e9, {1e9, 0, 0, 0}, 0, 0, NULL, NULL, ""}};
+    [PARAM_LOW] = {.struct_size = sizeof(arbor_param_desc), .type = ARBOR_PARAM_FLOAT, .id = "low",
+                   .name = "Low", .group = "Window", .unit = "",
+                   .hint = "Physical values below this become it (HU for CT)", .components = 1,
+                   .min_value = -1e9, .max_value = 1e9, .default_value = {-1e9}, .default_text = ""},
+    [PARAM_HIGH] = {.struct_size = sizeof(arbor_param_desc), .type = ARBOR_PARAM_FLOAT, .id = "high",
+                    .name = "High", .group = "Window", .unit = "",
+                    .hint = "Physical values above this become it (HU for CT)", .components = 1,
+                    .min_value = -1e9, .max_value = 1e9, .default_value = {1e9}, .default_text = ""},
+};
 
 /* ---- instance -------------------------------------------------------------- */
 
 typedef struct window_instance {
     arbor_plugin plugin; /* first member: the host holds a pointer to it */
-    const arbor_host *host;
-    double value[PARAM_COUNT];
+    arbor_param_slot values[PARAM_COUNT];
     char error[512];
 } window_instance;
 
@@ -66,15 +72,6 @@ static arbor_status fail(window_instance *self, arbor_status status, const char 
 {
     snprintf(self->error, sizeof self->error, "%s", message);
     return status;
-}
-
-static int param_index(const char *id)
-{
-    int i;
-    for (i = 0; id && i < PARAM_COUNT; ++i)
-        if (strcmp(window_params[i].id, id) == 0)
-            return i;
-    return -1;
 }
 
 static uint32_t params_count(const arbor_plugin *plugin)
@@ -92,45 +89,22 @@ static const arbor_param_desc *params_describe(const arbor_plugin *plugin, uint3
 static arbor_status params_get(const arbor_plugin *plugin, const char *id, arbor_param_value *out)
 {
     window_instance *self = instance_of(plugin);
-    int i;
     if (!self)
         return ARBOR_ERROR_INVALID_ARGUMENT;
-    self->error[0] = '\0';
-    if (!id || !out || out->struct_size < ARBOR_MIN_SIZE(arbor_param_value))
-        return fail(self, ARBOR_ERROR_INVALID_ARGUMENT, "get: NULL id or value record too small");
-    i = param_index(id);
-    if (i < 0)
-        return fail(self, ARBOR_ERROR_NOT_FOUND, "get: no such parameter");
-    out->type = ARBOR_PARAM_FLOAT;
-    out->components = 1;
-    out->number[0] = self->value[i];
-    out->text = "";
-    return ARBOR_OK;
+    return arbor_param_get(window_params, PARAM_COUNT, self->values, id, out, self->error, sizeof self->error);
 }
 
-static arbor_status params_set(arbor_plugin *plugin, const char *id, const arbor_param_value *v)
+static arbor_status params_set(arbor_plugin *plugin, const char *id, const arbor_param_value *value)
 {
     window_instance *self = instance_of(plugin);
-    int i;
     if (!self)
         return ARBOR_ERROR_INVALID_ARGUMENT;
     self->error[0] = '\0';
-    if (!id || !v || v->struct_size < ARBOR_MIN_SIZE(arbor_param_value))
-        return fail(self, ARBOR_ERROR_INVALID_ARGUMENT, "set: NULL id or value record too small");
-    i = param_index(id);
-    if (i < 0)
-        return fail(self, ARBOR_ERROR_NOT_FOUND, "set: no such parameter");
-    if (v->type != ARBOR_PARAM_FLOAT || v->components != 1)
-        return fail(self, ARBOR_ERROR_INVALID_ARGUMENT, "set: expects one FLOAT");
-    if (!isfinite(v->number[0]) || v->number[0] < window_params[i].min_value ||
-        v->number[0] > window_params[i].max_value)
-        return fail(self, ARBOR_ERROR_OUT_OF_RANGE, "set: value outside [-1e9, 1e9]");
-    self->value[i] = v->number[0];
-    return ARBOR_OK;
+    return arbor_param_set(window_params, PARAM_COUNT, self->values, id, value, self->error, sizeof self->error);
 }
 
-static const arbor_params_v1 window_params_interface = {params_count, params_describe, params_get,
-                                                        params_set};
+static const arbor_params_v1 window_params_interface = {
+    .count = params_count, .describe = params_describe, .get = params_get, .set = params_set};
 
 /* ---- the filter ------------------------------------------------------------ */
 
@@ -200,7 +174,7 @@ static arbor_status filter_apply(arbor_plugin *plugin, const arbor_volume *in, a
 {
     window_instance *self = instance_of(plugin);
     int64_t i, j, k, nx, ny, nz;
-    double lo, hi;
+    double lo, hi, tmin, tmax;
     arbor_status s;
     if (!self)
         return ARBOR_ERROR_INVALID_ARGUMENT;
@@ -212,14 +186,16 @@ static arbor_status filter_apply(arbor_plugin *plugin, const arbor_volume *in, a
     if (in->dims[0] != out->dims[0] || in->dims[1] != out->dims[1] || in->dims[2] != out->dims[2] ||
         in->voxel_type != out->voxel_type)
         return fail(self, ARBOR_ERROR_INVALID_ARGUMENT, "input and output differ in dims or type");
-    if (self->value[PARAM_LOW] > self->value[PARAM_HIGH])
+    lo = self->values[PARAM_LOW].value.number[0];
+    hi = self->values[PARAM_HIGH].value.number[0];
+    if (lo > hi)
         return fail(self, ARBOR_ERROR_OUT_OF_RANGE, "low is above high");
 
     /* Physical window -> stored values (a negative scale swaps the ends). */
-    lo = (self->value[PARAM_LOW] - in->value_offset) / in->value_scale;
-    hi = (self->value[PARAM_HIGH] - in->value_offset) / in->value_scale;
+    lo = (lo - in->value_offset) / in->value_scale;
+    hi = (hi - in->value_offset) / in->value_scale;
     if (lo > hi) {
-        double t = lo;
+        const double t = lo;
         lo = hi;
         hi = t;
     }
@@ -228,12 +204,9 @@ static arbor_status filter_apply(arbor_plugin *plugin, const arbor_volume *in, a
         lo = ceil(lo);
         hi = floor(hi);
     }
-    {
-        double tmin, tmax;
-        type_range(in->voxel_type, &tmin, &tmax);
-        lo = lo < tmin ? tmin : (lo > tmax ? tmax : lo);
-        hi = hi < tmin ? tmin : (hi > tmax ? tmax : hi);
-    }
+    type_range(in->voxel_type, &tmin, &tmax);
+    lo = lo < tmin ? tmin : (lo > tmax ? tmax : lo);
+    hi = hi < tmin ? tmin : (hi > tmax ? tmax : hi);
 
     nx = in->dims[0];
     ny = in->dims[1];
@@ -241,7 +214,8 @@ static arbor_status filter_apply(arbor_plugin *plugin, const arbor_volume *in, a
     for (k = 0; k < nz; ++k) {
         const unsigned char *src = (const unsigned char *)in->voxels + k * in->strides[2];
         unsigned char *dst = (unsigned char *)out->voxels + k * out->strides[2];
-        if (task && task->progress && task->progress(task, (double)k / (double)nz, "windowing"))
+        /* The host always passes a task (contract.md); other callers may not. */
+        if (task && task->progress(task, (double)k / (double)nz, "windowing"))
             return fail(self, ARBOR_ERROR_CANCELLED, "cancelled");
         switch (in->voxel_type) {
         case ARBOR_VOXEL_U8: CLAMP_SLICE(uint8_t); break;
@@ -255,12 +229,13 @@ static arbor_status filter_apply(arbor_plugin *plugin, const arbor_volume *in, a
         default: return fail(self, ARBOR_ERROR_UNSUPPORTED, "unsupported voxel type");
         }
     }
-    if (task && task->progress)
+    if (task)
         task->progress(task, 1.0, "windowing");
     return ARBOR_OK;
 }
 
-static const arbor_filter_v1 window_filter_interface = {filter_output_type, filter_apply};
+static const arbor_filter_v1 window_filter_interface = {.output_type = filter_output_type,
+                                                        .apply = filter_apply};
 
 /* ---- instance record functions --------------------------------------------- */
 
@@ -308,11 +283,10 @@ static const arbor_plugin_descriptor *entry_plugin_descriptor(uint32_t index)
     return index == 0 ? &window_descriptor : NULL;
 }
 
-static arbor_status entry_create_plugin(const arbor_host *host, const char *plugin_id,
-                                        arbor_plugin **out)
+/* Cheap: the host creates instances only to read their parameters, too. */
+static arbor_status entry_create_plugin(const arbor_host *host, const char *plugin_id, arbor_plugin **out)
 {
     window_instance *self;
-    int i;
     if (!out)
         return ARBOR_ERROR_INVALID_ARGUMENT;
     *out = NULL;
@@ -332,13 +306,17 @@ static arbor_status entry_create_plugin(const arbor_host *host, const char *plug
     self->plugin.destroy = instance_destroy;
     self->plugin.get_interface = instance_get_interface;
     self->plugin.last_error = instance_last_error;
-    self->host = host;
-    for (i = 0; i < PARAM_COUNT; ++i)
-        self->value[i] = window_params[i].default_value[0];
+    arbor_param_reset(window_params, PARAM_COUNT, self->values);
     *out = &self->plugin;
     return ARBOR_OK;
 }
 
-ARBOR_PLUGIN_ENTRY = {sizeof(arbor_plugin_entry), ARBOR_ABI_VERSION_INIT, entry_init,
-                      entry_deinit, entry_plugin_count, entry_plugin_descriptor,
-                      entry_create_plugin};
+ARBOR_PLUGIN_ENTRY = {
+    .struct_size = sizeof(arbor_plugin_entry),
+    .abi_version = ARBOR_ABI_VERSION_INIT,
+    .init = entry_init,
+    .deinit = entry_deinit,
+    .plugin_count = entry_plugin_count,
+    .plugin_descriptor = entry_plugin_descriptor,
+    .create_plugin = entry_create_plugin,
+};

@@ -7,16 +7,24 @@
  * to the global maximum.  Every other branch hangs off its parent branch at
  * its saddle.  Parents come before their children (parent[b] < b).
  *
- * Measures describe the region a branch encloses at its saddle, including
- * every branch simplified into it.  They come as a table: measure_count
- * columns named by measure_ids, one row per branch.  The host provides at
- * least the ARBOR_MEASURE_* columns below; relative_measures divides each
- * column by the root's value, so relative values lie in [0, 1] and do not
- * change as the tree is simplified.
+ * Measures describe the region a branch encloses at its saddle: the voxels
+ * beyond the saddle's contour on the branch's side, the saddle included, and
+ * so every branch simplified into it and every descendant.  They come as a
+ * table: measure_count columns named by measure_ids, one row per branch.
+ * The host provides at least the five ARBOR_MEASURE_* columns from
+ * persistence to relative-hypervolume (simplifiers get exactly these); trees
+ * handed to depictors and generators may have more (thickness, compactness).
+ * relative_measures divides each column by the root's value (0 where the
+ * root's is 0), so relative values lie in [0, 1] and do not change as the
+ * tree is simplified.  The root's region is the whole volume.
  *
  * Values (saddle_value, extremum_value) are stored voxel values, not physical
- * ones.  Positions are LPS millimetres (see volume.h).  Vertices are voxel
- * indices i + nx*(j + ny*k).
+ * ones; since ABI 1.4 the record carries the mapping to physical values.
+ * Positions are LPS millimetres (see volume.h).  Vertices are voxel indices
+ * i + nx*(j + ny*k).  The root's saddle is the global minimum and its
+ * extremum the global maximum, kind ARBOR_EXTREMUM_MAXIMUM.
+ *
+ * The record is an input: [borrowed: until return], every array with it.
  */
 #ifndef ARBOR_BRANCH_TREE_H
 #define ARBOR_BRANCH_TREE_H
@@ -74,8 +82,18 @@ typedef struct arbor_branch_tree {
     const double *relative_measures; /* same layout, each column / the root's */
 
     /* [branch_count] importance the simplifier gave each branch when the tree
-     * was cut, or NULL when the tree was not simplified. */
+     * was cut, or NULL when the tree was not simplified (the root's is 1).
+     * [nullable] */
     const double *importance;
+
+    /* Since ABI 1.4 (check ARBOR_HAS_FIELD(arbor_branch_tree, tree->struct_size,
+     * value_unit)): the volume's mapping from stored values to physical ones,
+     * physical = stored * value_scale + value_offset, and the physical unit
+     * ("HU"; "" when unknown), as in arbor_volume.  The host always sets
+     * them (scale 1, offset 0 when the file says nothing). */
+    double value_scale;
+    double value_offset;
+    const char *value_unit;
 } arbor_branch_tree;
 #define ARBOR_MIN_SIZE_arbor_branch_tree ARBOR_SIZE_THROUGH(arbor_branch_tree, importance) /* through ABI 1.0 */
 

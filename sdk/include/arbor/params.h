@@ -7,6 +7,17 @@
  * needs host code of its own.  Values live in the instance: the host sets them
  * before a call and reads them back to save a session.
  *
+ * When values change.  Never during a call.  Before every job that uses an
+ * instance (a generation, a frame, a pruning run) the host sets every
+ * parameter again, on the thread that then makes the job's calls, so a value
+ * may differ from one call to the next (a slider moved between two frames);
+ * within a job it stays put (a simplifier's values are the same from prepare
+ * to its last importance call).  A value a plugin derives from its
+ * parameters is derived in the call that uses it, or again whenever set()
+ * changes one.  Settings are first checked on a fresh instance of their own
+ * (set, then get to read every value back); that instance does no work.
+ * arbor/param_check.h validates and parses values from these descriptions.
+ *
  * Interface id: ARBOR_INTERFACE_PARAMS.  Optional: an instance without it has
  * no parameters.
  */
@@ -78,22 +89,28 @@ typedef struct arbor_param_value {
 #define ARBOR_MIN_SIZE_arbor_param_value ARBOR_SIZE_THROUGH(arbor_param_value, text) /* through ABI 1.0 */
 
 typedef struct arbor_params_v1 {
-    /* Number of parameters of the instance; constant for its life. */
+    /* Number of parameters of the instance; constant for its life.
+     * [instance] [cheap] */
     uint32_t (*count)(const arbor_plugin *plugin);
 
     /* Description of parameter `index` (< count), valid for the life of the
-     * instance, or NULL when index is out of range. */
+     * instance, or NULL when index is out of range.  The host keeps the
+     * pointers and reads them from other threads while the instance lives:
+     * they must not change.  [instance] [cheap] */
     const arbor_param_desc *(*describe)(const arbor_plugin *plugin, uint32_t index);
 
     /* Current value of parameter `id`.  out->text stays valid until the next
-     * set() or destroy().  ARBOR_ERROR_NOT_FOUND for an unknown id. */
+     * set() or destroy().  ARBOR_ERROR_NOT_FOUND for an unknown id.  Set
+     * out->type and out->components; the host set out->struct_size.
+     * [instance] [borrowed: id until return] */
     arbor_status (*get)(const arbor_plugin *plugin, const char *id, arbor_param_value *out);
 
     /* Set parameter `id`.  The value is checked against its description:
      * ARBOR_ERROR_NOT_FOUND (unknown id), ARBOR_ERROR_INVALID_ARGUMENT (type
      * or component count differ, NULL text), ARBOR_ERROR_OUT_OF_RANGE
      * (outside [min, max], not an integer, choice index too large, NaN).  On
-     * error the previous value is kept.  value->text is copied. */
+     * error the previous value is kept.  value->text is copied.
+     * [instance] [borrowed: id, value and value->text until return] */
     arbor_status (*set)(arbor_plugin *plugin, const char *id, const arbor_param_value *value);
 } arbor_params_v1;
 

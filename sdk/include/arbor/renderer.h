@@ -8,7 +8,11 @@
  *
  * Renderers may cache data derived from the volume and labels between calls
  * (gradients, occupancy).  The revision counters in the request change
- * whenever the contents behind the pointers change.
+ * whenever the contents behind the pointers change.  The pointers themselves
+ * are [borrowed: until return]: keep copies or derived data, keyed by the
+ * revisions, never the pointers.  One instance renders the pipeline's frames
+ * (the workstation's previews and passes too); a turntable or the choice of
+ * the default renderer uses an instance of its own.
  */
 #ifndef ARBOR_RENDERER_H
 #define ARBOR_RENDERER_H
@@ -42,7 +46,7 @@ typedef struct arbor_render_request {
     uint32_t struct_size;
     uint32_t reserved0;
     const arbor_volume *volume;
-    const arbor_label_map *labels;           /* NULL: every voxel uses function 0 */
+    const arbor_label_map *labels;           /* NULL: every voxel uses function 0 (previews before the tree exists) [nullable] */
     const arbor_tf_set *transfer_functions;  /* one per label */
     const arbor_camera *camera;
     float background[4];                     /* straight sRGB + alpha behind the volume */
@@ -52,8 +56,9 @@ typedef struct arbor_render_request {
 #define ARBOR_MIN_SIZE_arbor_render_request ARBOR_SIZE_THROUGH(arbor_render_request, labels_revision) /* through ABI 1.0 */
 
 typedef struct arbor_renderer_v1 {
-    /* Render into *out (size chosen by the host).  Report progress per row
-     * block; honour cancellation. */
+    /* Render into *out (size chosen by the host; rgba [host-owned], depth
+     * and label_visibility as image.h says).  Report progress per row block;
+     * honour cancellation.  [instance] [borrowed: request until return] */
     arbor_status (*render)(arbor_plugin *plugin, const arbor_render_request *request,
                            arbor_image *out, arbor_task *task);
 } arbor_renderer_v1;
@@ -135,7 +140,8 @@ typedef struct arbor_render_request_v2 {
 typedef struct arbor_renderer_v2 {
     uint32_t struct_size;
     uint32_t reserved0;
-    /* Render `request->pass` of the request's region into *out. */
+    /* Render `request->pass` of the request's region into *out.
+     * [instance] [borrowed: request until return] */
     arbor_status (*render)(arbor_plugin *plugin, const arbor_render_request_v2 *request,
                            arbor_image *out, arbor_task *task);
 } arbor_renderer_v2;
@@ -168,6 +174,8 @@ typedef struct arbor_render_device {
 typedef struct arbor_render_device_v1 {
     uint32_t struct_size;
     uint32_t reserved0;
+    /* [instance]; may be slow the first time (an OpenGL renderer makes its
+     * context), so the host asks once per process. */
     arbor_status (*describe)(const arbor_plugin *plugin, arbor_render_device *out);
 } arbor_render_device_v1;
 #define ARBOR_MIN_SIZE_arbor_render_device_v1 ARBOR_SIZE_THROUGH(arbor_render_device_v1, describe) /* through ABI 1.2 */

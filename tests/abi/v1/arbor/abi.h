@@ -19,6 +19,31 @@
  *  - Interfaces (tables of functions) are fetched by a string id that carries
  *    a revision ("arbor.importer/1").  A changed interface gets a new id; the
  *    old one keeps working.  Ids never change once released.
+ *
+ * The contract.  Every function and pointer of the SDK carries tags saying who
+ * calls it, from which thread, and how long what it hands over lives
+ * (share/arbor/sdk/docs/contract.md, installed with these headers, has the
+ * whole contract and the reasons):
+ *
+ *   [main-thread]  called only on the thread that loaded the library (in
+ *                  `arbor` and the workstation the process's main thread).
+ *   [instance]     called from any thread, but never while another call into
+ *                  the same instance runs: the host orders the calls into one
+ *                  instance, and what one call wrote is visible to the next,
+ *                  whichever thread makes it.  Calls into *different*
+ *                  instances, also of the same plugin, may overlap unless the
+ *                  descriptor sets ARBOR_PLUGIN_FLAG_SERIALIZE.
+ *   [thread-safe]  may be called from any thread, at the same time as any
+ *                  other call (the plugin's own or the host's).
+ *   [cheap]        called often or while the user waits: no file reading
+ *                  beyond what is named, no large allocation, no GPU context.
+ *   [borrowed: X]  the callee may read it until X, never later; copy what
+ *                  you keep ("until return": until the call returns).
+ *   [host-owned]   memory the host allocated and frees; the plugin writes
+ *                  into it during the call only.
+ *   [nullable]     may be NULL (the text says when); everything else is
+ *                  never NULL when the host calls.
+ *   [since 1.N]    added in ABI minor N: read it only under ARBOR_HAS_FIELD.
  */
 #ifndef ARBOR_ABI_H
 #define ARBOR_ABI_H
@@ -45,7 +70,7 @@
  * interface ids; a plugin built against a newer minor than the host must check
  * struct sizes and interface availability before using additions. */
 #define ARBOR_ABI_VERSION_MAJOR 1
-#define ARBOR_ABI_VERSION_MINOR 3
+#define ARBOR_ABI_VERSION_MINOR 4
 #define ARBOR_ABI_VERSION_PATCH 0
 
 typedef struct arbor_version {

@@ -29,7 +29,11 @@ struct arbor_host {
     /* Write a message to the host log.  Thread-safe; may be called from any
      * thread between the library's init and deinit.  The host attributes the
      * message to the library or instance it gave this arbor_host to, so always
-     * log through the pointer you were given. */
+     * log through the pointer you were given.  While a pipeline job uses the
+     * instance, its messages go to that job's log (the workstation's jobs
+     * panel); otherwise to stderr at or above the host's log level.  Not for
+     * per-voxel or per-branch messages.  [thread-safe]
+     * [borrowed: message until return] */
     void (*log)(const arbor_host *host, arbor_log_level level, const char *message);
 
     /* Optional host extension by id ("arbor.host.something/1"), or NULL when
@@ -41,8 +45,12 @@ struct arbor_host {
 
 typedef struct arbor_task arbor_task;
 
-/* One task per long-running call.  Valid only during that call.  All three
- * functions are thread-safe: a plugin may call them from its worker threads. */
+/* One task per long-running call.  Valid only during that call: never keep
+ * the pointer.  The host always passes one, never NULL, with all three
+ * functions set (a test of the host checks every call); plugins that are also
+ * called by other programs may still check.  All three functions are
+ * thread-safe: a plugin may call them from its worker threads during the
+ * call.  [borrowed: until return] */
 struct arbor_task {
     uint32_t struct_size;
     uint32_t reserved0; /* 0; the padding before the pointers, named (ABI 1.3) */
@@ -51,18 +59,22 @@ struct arbor_task {
     /* Report progress of the current call: fraction in [0, 1], stage a short
      * label ("sorting", "join tree") or NULL to keep the previous one.  Cheap
      * (the host rate-limits its display).  Returns non-zero when cancellation
-     * was requested, like cancelled(). */
+     * was requested, like cancelled().  [thread-safe] [cheap] */
     arbor_bool32 (*progress)(arbor_task *task, double fraction, const char *stage);
 
     /* Non-zero once the user asked to cancel.  Poll it at least every tenth
-     * of a second of work; when set, stop and return ARBOR_ERROR_CANCELLED. */
+     * of a second of work; when set, stop and return ARBOR_ERROR_CANCELLED.
+     * [thread-safe] [cheap] */
     arbor_bool32 (*cancelled)(arbor_task *task);
 
     /* Memory for outputs whose size only the plugin knows (e.g. transfer
      * function control points).  Owned by the host, 64-byte aligned,
-     * zero-filled, valid until the host has consumed the call's outputs.
-     * Never free it.  Returns NULL when the host refuses (size limit): then
-     * return ARBOR_ERROR_OUT_OF_MEMORY or ARBOR_ERROR_TOO_LARGE. */
+     * zero-filled, valid until the call returns: the host copies what the
+     * outputs point into before it releases the task, so never keep a pointer
+     * to it for a later call.  Never free it.  Returns NULL for size 0 and
+     * when the host refuses (Arbor's limit: 16 GiB per call): then return
+     * ARBOR_ERROR_OUT_OF_MEMORY or ARBOR_ERROR_TOO_LARGE.  Not for scratch
+     * memory: use your own.  [thread-safe] */
     void *(*allocate)(arbor_task *task, uint64_t size);
 };
 #define ARBOR_MIN_SIZE_arbor_task ARBOR_SIZE_THROUGH(arbor_task, allocate) /* through ABI 1.0 */

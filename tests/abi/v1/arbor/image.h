@@ -4,7 +4,8 @@
  *
  * Colours are display-encoded sRGB values in [0, 1] with premultiplied alpha,
  * the space transfer functions are written in and composited in.  Row 0 is the
- * top of the image.
+ * top of the image.  The pixels are [host-owned]: write them during the call
+ * only.
  */
 #ifndef ARBOR_IMAGE_H
 #define ARBOR_IMAGE_H
