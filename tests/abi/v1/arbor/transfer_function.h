@@ -27,8 +27,9 @@
  * 1 - (1 - alpha)^(d / opacity_unit_distance).
  *
  * After generation the host may scale a branch's optical depth (visibility
- * balancing: alpha' = 1 - (1 - alpha)^m) and apply a person's per-branch
- * edits; renderers see the result, tables and points alike.
+ * balancing: alpha' = 1 - (1 - alpha)^m, tables and points alike) and apply a
+ * person's per-branch edits of visibility, opacity and colour (to the
+ * tables); renderers see the result.
  *
  * Generators run on the branch tree alone: regenerating after a parameter
  * change (flow rate, hue template) must not need the contour tree again.
