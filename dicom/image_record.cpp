@@ -102,6 +102,16 @@ public:
         return v;
     }
 
+    // Value `pos` of a multi-valued numeric attribute that has that many: an
+    // empty one (two backslashes in a row) is an error that names the attribute.
+    double value_at(DcmItem &item, const DcmTagKey &tag, const char *name, unsigned long pos) const
+    {
+        const std::optional<double> v = number(item, tag, name, pos);
+        if (!v)
+            invalid(std::string(name) + " value " + std::to_string(pos + 1) + " is empty");
+        return *v;
+    }
+
     uint32_t whole(DcmItem &item, const DcmTagKey &tag, const char *name, uint32_t fallback) const
     {
         const auto v = number(item, tag, name);
@@ -124,7 +134,7 @@ public:
                     std::to_string(N));
         std::array<double, N> out{};
         for (std::size_t i = 0; i < N; ++i)
-            out[i] = *number(item, tag, name, i);
+            out[i] = value_at(item, tag, name, i);
         return out;
     }
 
@@ -280,7 +290,7 @@ public:
         const std::array<double, 3> n = {o[1] * o[5] - o[2] * o[4], o[2] * o[3] - o[0] * o[5],
                                          o[0] * o[4] - o[1] * o[3]};
         for (std::size_t f = 0; f < r.frames.size(); ++f) {
-            const double d = *number(ds_, DcmTagKey(0x3004, 0x000C), "Grid Frame Offset Vector", f);
+            const double d = value_at(ds_, DcmTagKey(0x3004, 0x000C), "Grid Frame Offset Vector", f);
             std::array<double, 3> p = *g0.position;
             for (int a = 0; a < 3; ++a)
                 p[static_cast<std::size_t>(a)] += d * n[static_cast<std::size_t>(a)];

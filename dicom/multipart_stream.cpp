@@ -68,7 +68,9 @@ void MultipartStream::parse()
             scanned_ = buffer_.size() > delimiter_.size() ? buffer_.size() - delimiter_.size() : 0;
             return;
         }
-        const std::string headers = buffer_.substr(line_end + 2, headers_end - line_end - 2);
+        // A part without headers has its blank line right after the delimiter's.
+        const std::string headers =
+            headers_end > line_end ? buffer_.substr(line_end + 2, headers_end - line_end - 2) : std::string();
         std::string part = buffer_.substr(body, next - body);
         buffer_.erase(0, next);
         scanned_ = 0;

@@ -47,7 +47,7 @@ inline constexpr std::size_t kParallelPopulateBytes = std::size_t{64} << 20;
 // random reads of the sweeps then miss the TLB: the tree is no faster.
 inline void populate_pages(char *c, std::size_t bytes)
 {
-    const auto populate = [c, bytes](std::size_t from, std::size_t to) {
+    const auto populate = [c](std::size_t from, std::size_t to) {
         for (std::size_t at = from; at < to; at += kPopulateBytes)
             madvise(c + at, std::min(to - at, kPopulateBytes), MADV_POPULATE_WRITE);
     };

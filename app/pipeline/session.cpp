@@ -307,7 +307,7 @@ SessionRead parse_session(const std::string &text, const fs::path &folder, const
     json j;
     try {
         j = json::parse(text);
-    } catch (const json::parse_error &e) {
+    } catch (const json::exception &e) { // parse_error, or out_of_range for a number like 1e999
         r.fail(std::string("not JSON: ") + e.what());
     }
     if (!j.is_object() || !j.contains("format") || !j.at("format").is_string())

@@ -10,11 +10,16 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <limits>
+#include <optional>
 #include <string_view>
 
 namespace arbor::pipeline {
 
 namespace {
+
+// Longest lookup table a file may hold (as `--lut-size` and sessions allow).
+constexpr int64_t kMaxLutSize = 65536;
 
 const char *role_name(arbor_branch_role r)
 {
@@ -39,6 +44,19 @@ void write_plugin(io::JsonWriter &j, std::string_view key, const PluginSetting &
         j.field(id, value);
 }
 
+// A whole number of JSON in [lo, hi], or nullopt: get<T>() would take a
+// fraction, wrap a negative and overflow on a large float without a word.
+std::optional<int64_t> whole(const nlohmann::json &v, int64_t lo, int64_t hi)
+{
+    if (v.is_number_unsigned()) {
+        const uint64_t u = v.get<uint64_t>();
+        return u <= static_cast<uint64_t>(hi) ? std::optional<int64_t>(static_cast<int64_t>(u)) : std::nullopt;
+    }
+    if (v.is_number_integer() && v.get<int64_t>() >= lo && v.get<int64_t>() <= hi)
+        return v.get<int64_t>();
+    return std::nullopt;
+}
+
 // A colour with six decimals (as a float: what renderers read back).
 void write_rgba(io::JsonWriter &j, const float *c)
 {
@@ -50,7 +68,7 @@ void write_rgba(io::JsonWriter &j, const float *c)
 } // namespace
 
 void write_transfer_functions(const std::filesystem::path &path, const TransferFunctionsResult &result,
-                              const std::string &source)
+                              const std::string &source, const std::function<void(io::JsonWriter &)> &annotate)
 {
     const TransferFunctions &tf = *result.functions;
     const DepictionResult &depicted = *result.depiction;
@@ -59,6 +77,8 @@ void write_transfer_functions(const std::filesystem::path &path, const TransferF
     const arbor_depiction *depiction = depicted.depictor.empty() ? nullptr : &depicted.depiction->record();
     io::write_json_file(path, io::JsonLayout::indented, [&](io::JsonWriter &j) {
         j.field("format", "arbor-transfer-functions/1");
+        if (annotate)
+            annotate(j);
         j.field("source", source);
         {
             const io::JsonWriter::Scope simplifier = j.object("simplifier");
@@ -138,7 +158,7 @@ StoredTransferFunctions read_transfer_functions(const std::filesystem::path &pat
     } catch (const nlohmann::json::exception &e) {
         throw bad(std::string("not valid JSON (") + e.what() + ")");
     }
-    if (j.value("format", "") != "arbor-transfer-functions/1")
+    if (!j.is_object() || !j.contains("format") || j.at("format") != "arbor-transfer-functions/1")
         throw bad("not an arbor-transfer-functions/1 file");
     try {
         StoredTransferFunctions out;
@@ -146,21 +166,33 @@ StoredTransferFunctions read_transfer_functions(const std::filesystem::path &pat
         out.simplifier_id = j.at("simplifier").at("id").get<std::string>();
         out.cut = j.at("simplifier").at("cut").get<std::string>();
         const auto &branches = j.at("branches");
-        const uint32_t lut = j.at("lut_size").get<uint32_t>();
+        const std::optional<int64_t> lut_size = whole(j.at("lut_size"), 2, kMaxLutSize);
+        if (!lut_size)
+            throw bad("lut_size " + j.at("lut_size").dump() + " is not a whole number in [2, " +
+                      std::to_string(kMaxLutSize) + "]");
+        const auto lut = static_cast<uint32_t>(*lut_size);
         const double unit = j.at("opacity_unit_distance_mm").get<double>();
-        if (branches.empty() || lut < 2 || !(unit > 0))
-            throw bad("no branches, a lookup table shorter than 2 or a non-positive opacity unit distance");
+        if (branches.empty() || !(unit > 0))
+            throw bad("no branches or a non-positive opacity unit distance");
+        // Every table is checked before any is allocated: the tables a file
+        // claims must be in it.
+        for (uint32_t b = 0; b < branches.size(); ++b)
+            if (branches[b].at("lut").size() != lut)
+                throw bad("branch " + std::to_string(b) + " has " + std::to_string(branches[b].at("lut").size()) +
+                          " lookup-table entries, not " + std::to_string(lut));
         out.functions = std::make_shared<TransferFunctions>(static_cast<uint32_t>(branches.size()), lut, unit);
         std::vector<uint32_t> offsets{0};
         std::vector<arbor_tf_point> points;
         std::vector<float> rgba(std::size_t{lut} * 4);
         for (uint32_t b = 0; b < branches.size(); ++b) {
             const auto &br = branches[b];
-            out.extremum_vertex.push_back(br.at("extremum_vertex").get<int64_t>());
+            const std::optional<int64_t> vertex =
+                whole(br.at("extremum_vertex"), std::numeric_limits<int64_t>::min(), std::numeric_limits<int64_t>::max());
+            if (!vertex)
+                throw bad("branch " + std::to_string(b) + ": extremum_vertex " + br.at("extremum_vertex").dump() +
+                          " is not a voxel index");
+            out.extremum_vertex.push_back(*vertex);
             const auto &entries = br.at("lut");
-            if (entries.size() != lut)
-                throw bad("branch " + std::to_string(b) + " has " + std::to_string(entries.size()) +
-                          " lookup-table entries, not " + std::to_string(lut));
             for (uint32_t i = 0; i < lut; ++i)
                 for (int c = 0; c < 4; ++c) {
                     const float x = entries[i].at(static_cast<std::size_t>(c)).get<float>();

@@ -13,15 +13,23 @@
 #include "host/tf_generation.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
+namespace arbor::io {
+class JsonWriter;
+}
+
 namespace arbor::pipeline {
 
 // Writes the transfer functions of a result; `source` names the volume.
+// `annotate`, when given, writes members of the caller's first (a report's
+// provenance).
 void write_transfer_functions(const std::filesystem::path &path, const TransferFunctionsResult &result,
-                              const std::string &source);
+                              const std::string &source,
+                              const std::function<void(io::JsonWriter &)> &annotate = {});
 
 // What `arbor render` needs back from a file: how the tree was simplified
 // (to rebuild the labels), each branch's extremum (to check the rebuilt

@@ -7,6 +7,7 @@
 #include <zlib.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <utility>
@@ -169,6 +170,14 @@ const TypeInfo &check_type(int datatype, int bitpix, const std::string &what)
     return *type;
 }
 
+// A byte count that may not fit in 64 bits (dims up to 2^31 - 1 each).
+std::string byte_count(double bytes)
+{
+    char text[64];
+    std::snprintf(text, sizeof text, "%.0f", bytes);
+    return text;
+}
+
 void check_voxel_room(const NiftiEssentials &e, const TypeInfo &type, bool compressed,
                       uint64_t file_size, const std::string &what)
 {
@@ -188,7 +197,7 @@ void check_voxel_room(const NiftiEssentials &e, const TypeInfo &type, bool compr
                   what + ": vox_offset " + std::to_string(int64_t(e.vox_offset)) + " + " +
                       std::to_string(e.dim[1]) + " x " + std::to_string(e.dim[2]) + " x " +
                       std::to_string(e.dim[3]) + " " + type.name + " voxels need " +
-                      std::to_string(int64_t(e.vox_offset + bytes)) +
+                      byte_count(e.vox_offset + bytes) +
                       " bytes but the file holds " + std::to_string(file_size) + " (truncated)");
 }
 

@@ -13,6 +13,7 @@
 #include "vtk_image_reader.hpp"
 #include "vtk_message_route.hpp"
 #include "vtk_voxel_type.hpp"
+#include "vtk_xml_layout_check.hpp"
 
 #include <vtkAlgorithm.h>
 #include <vtkDataArray.h>
@@ -170,6 +171,8 @@ void VtkImageImporter::read_header(const std::string &path, const sdk::Task &tas
     const bool warnings_fail = kind.layout == VtkLayout::legacy;
 
     VtkMessageRoute route(*this);
+    if (kind.layout == VtkLayout::xml)
+        check_xml_image_layout(path, file_size, what);
     vtkSmartPointer<vtkAlgorithm> reader = make_image_reader(kind.layout, path);
     ReaderWatch watch(*reader, route, task);
     reader->UpdateInformation();
@@ -201,12 +204,14 @@ void VtkImageImporter::read_voxels(const std::string &path, const sdk::Task &tas
 {
     const std::string name = file_name_of(path);
     const std::string what = "voxels of " + name;
-    require_readable_file(path);
+    const uint64_t file_size = require_readable_file(path);
     const VtkFileKind kind = identify(path, name);
     const bool warnings_fail = kind.layout == VtkLayout::legacy;
     constexpr double kReadShare = 0.9; // of the progress bar; copying is the rest
 
     VtkMessageRoute route(*this);
+    if (kind.layout == VtkLayout::xml)
+        check_xml_image_layout(path, file_size, what);
     vtkSmartPointer<vtkAlgorithm> reader = make_image_reader(kind.layout, path);
     ReaderWatch watch(*reader, route, task, 0.0, kReadShare);
     reader->UpdateInformation();
