@@ -7,6 +7,7 @@
 // NODE: a configured name, AET@host:port, or a DICOMweb URL.
 #include "commands.hpp"
 #include "table_text.hpp"
+#include "usage_error.hpp"
 
 #include "dicom/pacs_input.hpp"
 #include "dicom/series_retrieval.hpp"
@@ -126,7 +127,7 @@ void add_nodes_commands(CLI::App *pacs, Context &context)
         const auto file = dicom::default_nodes_file();
         auto list = dicom::read_nodes(file);
         if (a->name.empty() || dicom::looks_inline(a->name) || a->name.find('/') != std::string::npos)
-            throw std::invalid_argument("a node name may not be empty or contain '@', ':' or '/'");
+            throw UsageError("a node name may not be empty or contain '@', ':' or '/'");
         PacsNode n = dicom::parse_inline_node(a->address);
         n.secret = {};
         n.name = a->name;
@@ -193,8 +194,8 @@ void add_find_command(CLI::App *pacs, Context &context)
     context.add_command(find, [&context, f]() {
         static const std::regex date(R"(\d{8}|\d{8}-|-\d{8}|\d{8}-\d{8})");
         if (!f->query.study_date.empty() && !std::regex_match(f->query.study_date, date))
-            throw std::invalid_argument("--study-date: write YYYYMMDD or a range YYYYMMDD-YYYYMMDD, not '" +
-                                        f->query.study_date + "'");
+            throw UsageError("--study-date: write YYYYMMDD or a range YYYYMMDD-YYYYMMDD, not '" +
+                             f->query.study_date + "'");
         const PacsNode node = f->node.resolve();
         const auto client = dicom::connect(node, f->node.options(context));
         if (f->level == "study") {

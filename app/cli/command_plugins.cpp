@@ -1,4 +1,5 @@
-// `arbor plugins`: which plugins were found, from which files, and which
+// `arbor plugins`: which plugins were found, from which files, by which
+// short name they go (none when another loaded plugin shares it), and which
 // libraries or plugins were refused and why.
 #include "commands.hpp"
 
@@ -28,7 +29,14 @@ void add_plugins_command(CLI::App &app, Context &context)
             j["plugins"] = nlohmann::json::array();
             for (const PluginInfo &p : r.plugins()) {
                 const arbor_plugin_descriptor &d = *p.descriptor;
+                const std::string short_name = plugin_short_name(d.id);
+                nlohmann::json sharing = nlohmann::json::array();
+                for (const PluginInfo *other : r.sharing_short_name(short_name))
+                    if (other != &p)
+                        sharing.push_back(other->descriptor->id);
                 j["plugins"].push_back({{"id", d.id},
+                                        {"short_name", short_name},
+                                        {"short_name_shared_with", sharing},
                                         {"kind", d.kind},
                                         {"name", d.name},
                                         {"version", d.version},
@@ -42,10 +50,20 @@ void add_plugins_command(CLI::App &app, Context &context)
             std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
             return 0;
         }
-        std::printf("%-34s %-13s %-8s %s\n", "ID", "KIND", "VERSION", "NAME");
-        for (const PluginInfo &p : r.plugins())
-            std::printf("%-34s %-13s %-8s %s\n", p.descriptor->id, p.descriptor->kind,
+        std::printf("%-34s %-16s %-13s %-8s %s\n", "ID", "SHORT NAME", "KIND", "VERSION", "NAME");
+        bool shared = false;
+        for (const PluginInfo &p : r.plugins()) {
+            std::string short_name = plugin_short_name(p.descriptor->id);
+            if (r.sharing_short_name(short_name).size() > 1) {
+                short_name = "(shared)";
+                shared = true;
+            }
+            std::printf("%-34s %-16s %-13s %-8s %s\n", p.descriptor->id, short_name.c_str(), p.descriptor->kind,
                         p.descriptor->version, p.descriptor->name);
+        }
+        if (shared)
+            std::printf("\n(shared): another plugin has the same short name; write the full id, also in flags "
+                        "(--ID.PARAMETER)\n");
         if (!r.refusals().empty()) {
             std::printf("\nRefused:\n");
             for (const PluginRefusal &x : r.refusals())

@@ -1,5 +1,7 @@
 #include "sweep.hpp"
 
+#include "usage_error.hpp"
+
 #include <cctype>
 #include <stdexcept>
 
@@ -60,8 +62,8 @@ void refuse_lists(const SweepAxes &axes, const std::string &command)
         {"--shape", &axes.shapes}, {"--hues", &axes.hues}};
     for (const auto &[flag, values] : flags)
         if (values->size() > 1)
-            throw std::invalid_argument(std::string(flag) + " takes one value in `arbor " + command +
-                                        "` (lists are sweeps of `arbor run`)");
+            throw UsageError(std::string(flag) + " takes one value in `arbor " + command +
+                             "` (lists are sweeps of `arbor run`)");
 }
 
 } // namespace arbor::cli

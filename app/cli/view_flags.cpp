@@ -8,7 +8,10 @@ using pipeline::short_name;
 
 void ViewFlags::add_to(CLI::App &command, Context &context)
 {
-    renderer_option_ = command.add_option("--renderer", renderer_, "Renderer plugin (id or last part; default auto: the OpenGL ray caster on graphics hardware, else the CPU ray caster)")
+    renderer_option_ = command.add_option("--renderer", renderer_,
+                                          "Renderer plugin: auto (the default: the OpenGL ray caster on graphics "
+                                          "hardware, else the CPU ray caster) or a short name or id of those loaded (" +
+                                              plugin_names(context.registry, ARBOR_KIND_RENDERER) + ")")
                            ->group("Rendering");
     width_option_ = command.add_option("--width", width_, "Image width in pixels (default 512)")
                         ->check(CLI::Range(16, 8192))->group("Rendering");

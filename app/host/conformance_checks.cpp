@@ -1,11 +1,15 @@
 #include "conformance_checks.hpp"
 
+#include "conformance_cancel.hpp"
 #include "conformance_fixtures.hpp"
 #include "descriptor_rules.hpp"
 #include "host_services.hpp"
 #include "tf_generation.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -19,6 +23,24 @@ namespace {
 
 // A check body returns "" when it passed, otherwise the first problem.
 using Body = std::function<std::string()>;
+
+// Cancellation: the task is cancelled this long into a call on a large
+// input, and the plugin must return within the grace after that (host.h
+// asks for a poll every tenth of a second; the grace allows a loaded machine).
+constexpr std::chrono::milliseconds kCancelAfter{50};
+constexpr double kCancelGraceSeconds = 1.0;
+
+// A number in a message: "NaN" whatever its sign bit, "infinity", or %.9g.
+std::string number_text(double x)
+{
+    if (std::isnan(x))
+        return "NaN";
+    if (std::isinf(x))
+        return x > 0 ? "infinity" : "-infinity";
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", x);
+    return text;
+}
 
 std::string status_text(arbor_status s)
 {
@@ -82,8 +104,60 @@ private:
         } catch (const std::exception &e) {
             problem = std::string("host-side exception: ") + e.what();
         }
+        // What the plugin last said, on every failure: often the reason.
+        if (!problem.empty() && p_) {
+            const std::string said = message();
+            if (said.empty())
+                problem += " (last_error: empty)";
+            else if (problem.find(said) == std::string::npos)
+                problem += " (last_error: \"" + said + "\")";
+        }
         sink_.result(id_, name, problem.empty(), problem);
         return problem.empty();
+    }
+
+    // "" unless `got` is an error (other than CANCELLED) that came without
+    // a message: users would see only the status's name.
+    std::string unexplained(arbor_status got, const std::string &call) const
+    {
+        if (got == ARBOR_OK || got == ARBOR_ERROR_CANCELLED || !message().empty())
+            return "";
+        return call + " returned " + status_text(got) + " without a last_error message";
+    }
+
+    // "" when a call that succeeded left last_error empty: a message from an
+    // earlier call would otherwise stand for the next error that has none.
+    std::string cleared(const std::string &call) const
+    {
+        const std::string said = message();
+        if (said.empty())
+            return "";
+        return call + " succeeded but last_error still says \"" + said +
+               "\"; clear it at the start of every call";
+    }
+
+    // Calls `call` with a task cancelled soon after it starts; "" when it
+    // returned before the cancel came, or soon after it with CANCELLED (or
+    // OK: the work was done).
+    // `refused` (when given) is set when the plugin turned the input down
+    // as UNSUPPORTED, with a message: the caller may try another.
+    std::string cancellation(const std::string &call, const std::function<arbor_status(arbor_task *)> &body,
+                             bool *refused = nullptr)
+    {
+        const CancelOutcome r = cancel_mid_call(body, kCancelAfter);
+        if (refused)
+            *refused = r.status == ARBOR_ERROR_UNSUPPORTED && !message().empty();
+        if (refused && *refused)
+            return "";
+        const auto ms = [](double s) { return std::to_string(static_cast<long>(s * 1000 + 0.5)) + " ms"; };
+        if (r.cancelled && r.seconds_after > kCancelGraceSeconds)
+            return call + " went on for " + ms(r.seconds_after) +
+                   " after its task was cancelled; poll task->cancelled at least every 0.1 s of work and return "
+                   "ARBOR_ERROR_CANCELLED";
+        if (r.status != ARBOR_OK && r.status != ARBOR_ERROR_CANCELLED)
+            return call + (r.cancelled ? " cancelled after " + ms(r.seconds - r.seconds_after) : "") +
+                   " returned " + status_text(r.status) + ": " + message();
+        return "";
     }
 
     std::string message() const
@@ -351,7 +425,9 @@ private:
             const arbor_status s = t.probe(p_, garbage.c_str(), head.data(), head.size(), &c);
             if (s != ARBOR_OK)
                 return "probe of a garbage file returned " + status_text(s) + ", expected ok";
-            return (c < 0 || c > 100) ? std::string("confidence outside [0, 100]") : std::string();
+            if (c < 0 || c > 100)
+                return std::string("confidence outside [0, 100]");
+            return cleared("probe of a garbage file, after the failed calls before it,");
         });
         run("importer read_header invalid arguments", [&] {
             arbor_volume v{};
@@ -449,28 +525,75 @@ private:
         run("filter on every voxel type", [&] {
             int accepted = 0;
             for (arbor_voxel_type vt = ARBOR_VOXEL_U8; vt <= ARBOR_VOXEL_F64; ++vt) {
-                FixtureVolume in(vt, 8);
-                arbor_voxel_type out_type = 0;
-                const arbor_status s = t.output_type(p_, &in.record(), &out_type);
-                if (s == ARBOR_ERROR_UNSUPPORTED)
-                    continue;
-                if (s != ARBOR_OK)
-                    return std::string("output_type(") + arbor_voxel_type_name(vt) + ") returned " +
-                           status_text(s);
-                if (arbor_voxel_size(out_type) == 0)
-                    return std::string("output_type(") + arbor_voxel_type_name(vt) +
-                           ") gave an unknown type";
-                FixtureVolume out(out_type, 8);
-                const arbor_status a = t.apply(p_, &in.record(), &out.record(), task.get());
-                if (a == ARBOR_ERROR_UNSUPPORTED)
-                    continue;
-                if (a != ARBOR_OK)
-                    return std::string("apply on ") + arbor_voxel_type_name(vt) + " returned " +
-                           status_text(a) + ": " + message();
-                ++accepted;
+                bool refused = false;
+                if (auto e = filter_once(t, task, vt, 8, 8, 8, refused); !e.empty())
+                    return e;
+                accepted += refused ? 0 : 1;
             }
             return accepted ? std::string() : std::string("accepted no voxel type at all");
         });
+        run("filter on tiny and thin volumes", [&] {
+            const int64_t shapes[][3] = {{1, 1, 1}, {2, 2, 2}, {1, 9, 7}, {9, 1, 7}, {9, 7, 1}};
+            for (arbor_voxel_type vt = ARBOR_VOXEL_U8; vt <= ARBOR_VOXEL_F64; ++vt)
+                for (const auto &d : shapes) {
+                    bool refused = false;
+                    if (auto e = filter_once(t, task, vt, d[0], d[1], d[2], refused); !e.empty())
+                        return e;
+                }
+            return std::string();
+        });
+        run("filter cancelled mid-call", [&] {
+            // A CT-sized slab in the first type the filter takes.
+            for (const arbor_voxel_type vt : {ARBOR_VOXEL_I16, ARBOR_VOXEL_U16, ARBOR_VOXEL_F32, ARBOR_VOXEL_U8}) {
+                FixtureVolume in(vt, 192, 192, 128);
+                arbor_voxel_type out_type = 0;
+                if (t.output_type(p_, &in.record(), &out_type) != ARBOR_OK || arbor_voxel_size(out_type) == 0)
+                    continue;
+                FixtureVolume out(out_type, 192, 192, 128);
+                bool refused = false;
+                const std::string problem = cancellation(
+                    std::string("apply on 192x192x128 ") + arbor_voxel_type_name(vt),
+                    [&](arbor_task *task) { return t.apply(p_, &in.record(), &out.record(), task); }, &refused);
+                if (!refused)
+                    return problem;
+            }
+            return std::string();
+        });
+    }
+
+    // One filter run on an nx*ny*nz volume of `vt`: "" when it worked (its
+    // floating-point output finite) or was refused with a message: as
+    // UNSUPPORTED, or any error for a volume thinner than 3 voxels (`refused`
+    // says which).
+    std::string filter_once(const arbor_filter_v1 &t, Task &task, arbor_voxel_type vt, int64_t nx, int64_t ny,
+                            int64_t nz, bool &refused)
+    {
+        const std::string what = std::to_string(nx) + "x" + std::to_string(ny) + "x" + std::to_string(nz) + " " +
+                                 arbor_voxel_type_name(vt);
+        FixtureVolume in(vt, nx, ny, nz);
+        arbor_voxel_type out_type = 0;
+        const arbor_status s = t.output_type(p_, &in.record(), &out_type);
+        refused = s != ARBOR_OK;
+        if (auto e = unexplained(s, "output_type(" + what + ")"); !e.empty())
+            return e;
+        if (s == ARBOR_ERROR_UNSUPPORTED)
+            return "";
+        if (s != ARBOR_OK)
+            return "output_type(" + what + ") returned " + status_text(s) + ": " + message();
+        if (arbor_voxel_size(out_type) == 0)
+            return "output_type(" + what + ") gave an unknown type";
+        FixtureVolume out(out_type, nx, ny, nz);
+        const arbor_status a = t.apply(p_, &in.record(), &out.record(), task.get());
+        refused = a != ARBOR_OK;
+        if (auto e = unexplained(a, "apply on " + what); !e.empty())
+            return e;
+        if (a == ARBOR_ERROR_UNSUPPORTED || (a != ARBOR_OK && std::min({nx, ny, nz}) < 3))
+            return ""; // refused (a volume thinner than a kernel, say), and said why
+        if (a != ARBOR_OK)
+            return "apply on " + what + " returned " + status_text(a) + ": " + message();
+        if (!out.all_finite())
+            return "apply on " + what + " wrote values that are not finite";
+        return cleared("apply on " + what);
     }
 
     // ---- simplifier -----------------------------------------------------------
@@ -501,8 +624,56 @@ private:
             for (double v : out)
                 if (!std::isfinite(v) || v < 0)
                     return std::string("importance is not a finite non-negative number");
+            return cleared("importance");
+        });
+        // Batches as the host makes them (simplifier.h): one row (a
+        // comparison of a tree with one branch below its root), rows of
+        // branches far down a big tree, up to 4096 at once; each row's
+        // importance its own.
+        run("simplifier on one row", [&] {
+            const FixtureTree two(2);
+            for (uint32_t first : {0u, 1u})
+                if (auto e = importances(t, two.rows(first, 1), first == 0 ? "the root's row alone" : "one branch alone");
+                    !e.empty())
+                    return e;
             return std::string();
         });
+        run("simplifier on 4096 rows", [&] {
+            const FixtureTree big(4097);
+            return importances(t, big.rows(1, 4096), "4096 branches of a tree 6 levels deep");
+        });
+        run("simplifier rows are independent", [&] {
+            const FixtureTree big(64);
+            const arbor_measure_rows batch = big.rows(1, 63);
+            std::vector<double> together(63, -1.0);
+            if (auto e = expect(t.importance(p_, &batch, together.data()), ARBOR_OK, "importance of 63 rows");
+                !e.empty())
+                return e;
+            for (uint32_t r = 0; r < 63; ++r) {
+                const arbor_measure_rows one = big.rows(1 + r, 1);
+                double alone = -1.0;
+                if (auto e = expect(t.importance(p_, &one, &alone), ARBOR_OK, "importance of one row"); !e.empty())
+                    return e;
+                if (!(alone == together[r]) && !(std::isnan(alone) && std::isnan(together[r])))
+                    return "the importance of row " + std::to_string(r) + " is " + number_text(together[r]) +
+                           " among 63 rows but " + number_text(alone) +
+                           " alone; it must depend on its own row only (simplifier.h)";
+            }
+            return std::string();
+        });
+    }
+
+    // "" when every importance of `rows` is a finite number >= 0.
+    std::string importances(const arbor_simplifier_v1 &t, const arbor_measure_rows &rows, const std::string &what)
+    {
+        std::vector<double> out(rows.row_count, std::nan(""));
+        if (auto e = expect(t.importance(p_, &rows, out.data()), ARBOR_OK, "importance of " + what); !e.empty())
+            return e;
+        for (uint32_t r = 0; r < rows.row_count; ++r)
+            if (!std::isfinite(out[r]) || out[r] < 0)
+                return "importance of " + what + ": row " + std::to_string(r) + " got " + number_text(out[r]) +
+                       ", not a finite number >= 0";
+        return "";
     }
 
     // ---- depictor -------------------------------------------------------------
@@ -545,15 +716,10 @@ private:
             if (auto e = expect(t.depict(p_, &request, &out.record(), task.get()), ARBOR_OK, "depict");
                 !e.empty())
                 return e;
-            const arbor_depiction &d = out.record();
-            for (uint32_t b = 0; b < 3; ++b) {
-                const float values[] = {d.opacity_at_saddle[b], d.opacity_at_extremum[b], d.saturation[b]};
-                for (float v : values)
-                    if (!(v >= 0.0f && v <= 1.0f))
-                        return std::string("opacity or saturation outside [0, 1]");
-                if (!std::isnan(d.hue[b]) && !(d.hue[b] >= 0.0f && d.hue[b] < 360.0f))
-                    return std::string("hue outside [0, 360)");
-            }
+            if (auto e = depiction_problem(out.record()); !e.empty())
+                return e;
+            if (auto e = cleared("depict"); !e.empty())
+                return e;
             for (uint32_t a = 0; a < 3; ++a)
                 for (uint32_t b = 0; b < 3; ++b) {
                     arbor_bool32 r = 0;
@@ -567,8 +733,51 @@ private:
                 return std::string("legend pixels outside [0, 1]");
             if (s != ARBOR_OK && s != ARBOR_ERROR_UNSUPPORTED)
                 return "legend returned " + status_text(s) + ": " + message();
+            return unexplained(s, "legend");
+        });
+        run("depictor on a one-branch tree", [&] {
+            const FixtureTree lone(1);
+            for (const int32_t selected : {0, -1}) {
+                arbor_depiction_request r = request;
+                r.tree = &lone.record();
+                r.selected_branch = selected;
+                DepictionRecord out(1);
+                const std::string call = "depict(the root alone, selected " + std::to_string(selected) + ")";
+                if (auto e = expect(t.depict(p_, &r, &out.record(), task.get()), ARBOR_OK, call); !e.empty())
+                    return e;
+                if (auto e = depiction_problem(out.record()); !e.empty())
+                    return call + ": " + e;
+                arbor_bool32 related = 0;
+                if (auto e = expect(t.related(p_, &lone.record(), 0, 0, &related), ARBOR_OK, "related(0, 0)");
+                    !e.empty())
+                    return e;
+            }
             return std::string();
         });
+        run("depictor cancelled mid-call", [&] {
+            const FixtureTree big(20000);
+            arbor_depiction_request r = request;
+            r.tree = &big.record();
+            r.selected_branch = 7;
+            DepictionRecord out(20000);
+            return cancellation("depict(20000 branches)",
+                                [&](arbor_task *task) { return t.depict(p_, &r, &out.record(), task); });
+        });
+    }
+
+    // "" when every branch's opacities and saturation lie in [0, 1] and its
+    // hue in [0, 360) (or NaN: none).
+    static std::string depiction_problem(const arbor_depiction &d)
+    {
+        for (uint32_t b = 0; b < d.branch_count; ++b) {
+            const float values[] = {d.opacity_at_saddle[b], d.opacity_at_extremum[b], d.saturation[b]};
+            for (float v : values)
+                if (!(v >= 0.0f && v <= 1.0f))
+                    return "branch " + std::to_string(b) + ": opacity or saturation outside [0, 1]";
+            if (!std::isnan(d.hue[b]) && !(d.hue[b] >= 0.0f && d.hue[b] < 360.0f))
+                return "branch " + std::to_string(b) + ": hue outside [0, 360)";
+        }
+        return "";
     }
 
     // ---- transfer-function generator ----------------------------------------
@@ -595,24 +804,91 @@ private:
                           "generate(NULL output)");
         });
         run("tf-generator on a small tree", [&] {
-            FixtureTfSet out(3, 16);
-            if (auto e = expect(t.generate(p_, &request, &out.record(), task.get()), ARBOR_OK, "generate");
-                !e.empty())
+            if (auto e = generate_once(t, task, request, "generate"); !e.empty())
                 return e;
-            const arbor_tf_set &s = out.record();
-            for (uint32_t i = 0; i < 3 * 16 * 4; ++i)
-                if (!(s.lut[i] >= 0.0f && s.lut[i] <= 1.0f))
-                    return std::string("lookup table value outside [0, 1]");
+            return cleared("generate");
+        });
+        run("tf-generator on a one-branch tree", [&] {
+            const FixtureTree lone(1);
+            arbor_tf_request r = request;
+            r.tree = &lone.record();
+            r.value_range[1] = 1000; // the lone root's values
+            return generate_once(t, task, r, "generate(the root alone)");
+        });
+        run("tf-generator without a volume", [&] {
+            arbor_tf_request r = request;
+            r.volume = nullptr; // allowed: the host regenerates from the tree alone
+            FixtureTfSet out(3, 16);
+            const arbor_status s = t.generate(p_, &r, &out.record(), task.get());
+            if (s == ARBOR_ERROR_INVALID_ARGUMENT) // a generator that needs the volume (transfer_function.h)
+                return unexplained(s, "generate(NULL volume)");
+            return generate_once(t, task, r, "generate(NULL volume)");
+        });
+        run("tf-generator with a depiction", [&] {
+            DepictionRecord depiction(3);
+            arbor_depiction &d = depiction.record();
+            const arbor_branch_role roles[] = {ARBOR_ROLE_PARENT, ARBOR_ROLE_SELECTED, ARBOR_ROLE_SIBLING};
             for (uint32_t b = 0; b < 3; ++b) {
-                if (!std::isfinite(s.domain[2 * b]) || !std::isfinite(s.domain[2 * b + 1]))
-                    return std::string("domain is not finite");
-                if (s.point_offsets[b + 1] < s.point_offsets[b])
-                    return std::string("point_offsets decrease");
+                d.role[b] = roles[b];
+                d.opacity_at_saddle[b] = 0.25f * static_cast<float>(b);
+                d.opacity_at_extremum[b] = 1.0f - 0.25f * static_cast<float>(b);
+                d.hue[b] = 120.0f * static_cast<float>(b);
+                d.saturation[b] = 0.5f;
             }
-            if (s.point_offsets[3] > 0 && !s.points)
-                return std::string("point_offsets count points but points is NULL");
+            arbor_tf_request r = request;
+            r.depiction = &d;
+            return generate_once(t, task, r, "generate(with a depiction)");
+        });
+        run("tf-generator on every voxel type", [&] {
+            for (arbor_voxel_type vt = ARBOR_VOXEL_U8; vt <= ARBOR_VOXEL_F64; ++vt)
+                for (const int64_t n : {8, 1}) {
+                    FixtureVolume v(vt, n);
+                    const auto [lo, hi] = v.value_range();
+                    arbor_tf_request r = request;
+                    r.volume = &v.record();
+                    r.value_range[0] = std::min(lo, 0.0);
+                    r.value_range[1] = std::max(hi, 100.0);
+                    const std::string call = "generate(" + std::to_string(n) + "^3 " + arbor_voxel_type_name(vt) + ")";
+                    if (auto e = generate_once(t, task, r, call); !e.empty())
+                        return e;
+                }
             return std::string();
         });
+        run("tf-generator cancelled mid-call", [&] {
+            const FixtureTree big(20000);
+            FixtureVolume v(ARBOR_VOXEL_U8, 36); // a voxel for every vertex of the tree
+            arbor_tf_request r = request;
+            r.tree = &big.record();
+            r.volume = &v.record();
+            r.value_range[1] = 1000;
+            FixtureTfSet out(20000, 256);
+            return cancellation("generate(20000 branches)",
+                                [&](arbor_task *task) { return t.generate(p_, &r, &out.record(), task); });
+        });
+    }
+
+    // One generate on `request` (lookup tables of 16): "" when it worked and
+    // its output is sane.
+    std::string generate_once(const arbor_tf_generator_v1 &t, Task &task, const arbor_tf_request &request,
+                              const std::string &call)
+    {
+        const uint32_t n = request.tree->branch_count, size = 16;
+        FixtureTfSet out(n, size);
+        if (auto e = expect(t.generate(p_, &request, &out.record(), task.get()), ARBOR_OK, call); !e.empty())
+            return e;
+        const arbor_tf_set &s = out.record();
+        for (uint32_t i = 0; i < n * size * 4; ++i)
+            if (!(s.lut[i] >= 0.0f && s.lut[i] <= 1.0f))
+                return call + ": lookup table value outside [0, 1] (branch " + std::to_string(i / (size * 4)) + ")";
+        for (uint32_t b = 0; b < n; ++b) {
+            if (!std::isfinite(s.domain[2 * b]) || !std::isfinite(s.domain[2 * b + 1]))
+                return call + ": the domain of branch " + std::to_string(b) + " is not finite";
+            if (s.point_offsets[b + 1] < s.point_offsets[b])
+                return call + ": point_offsets decrease";
+        }
+        if (s.point_offsets[n] > 0 && !s.points)
+            return call + ": point_offsets count points but points is NULL";
+        return "";
     }
 
     // ---- renderer -----------------------------------------------------------
@@ -652,6 +928,54 @@ private:
                 !e.empty())
                 return e;
             return image.all_in_unit_range() ? std::string() : std::string("pixels outside [0, 1]");
+        });
+        // Other volumes than the one above: each with its own revision, as
+        // the host gives them (renderers may keep a volume by revision).
+        uint64_t revision = 1;
+        const auto render_once = [&](arbor_voxel_type vt, int64_t n, const std::string &call) {
+            FixtureVolume v(vt, n);
+            const auto [lo, hi] = v.value_range();
+            FixtureTfSet functions(1, 16);
+            functions.fill_ramp(lo, hi > lo ? hi : lo + 1);
+            const arbor_camera c = fixture_camera(n);
+            arbor_render_request r = request;
+            r.volume = &v.record();
+            r.transfer_functions = &functions.record();
+            r.camera = &c;
+            r.volume_revision = ++revision;
+            FixtureImage image(16, 16);
+            const arbor_status s = t.render(p_, &r, &image.record(), task.get());
+            if (auto e = unexplained(s, call); !e.empty())
+                return e;
+            if (s == ARBOR_ERROR_UNSUPPORTED || (s != ARBOR_OK && n < 2))
+                return std::string(); // refused, and said why
+            if (s != ARBOR_OK)
+                return call + " returned " + status_text(s) + ": " + message();
+            return image.all_in_unit_range() ? std::string() : call + ": pixels outside [0, 1]";
+        };
+        run("renderer on tiny volumes", [&] {
+            for (const int64_t n : {1, 2})
+                if (auto e = render_once(ARBOR_VOXEL_U8, n, "render(" + std::to_string(n) + "^3 u8)"); !e.empty())
+                    return e;
+            return std::string();
+        });
+        run("renderer on every voxel type", [&] {
+            for (arbor_voxel_type vt = ARBOR_VOXEL_U8; vt <= ARBOR_VOXEL_F64; ++vt)
+                if (auto e = render_once(vt, 8, std::string("render(8^3 ") + arbor_voxel_type_name(vt) + ")");
+                    !e.empty())
+                    return e;
+            return std::string();
+        });
+        run("renderer cancelled mid-call", [&] {
+            FixtureVolume v(ARBOR_VOXEL_U8, 96);
+            const arbor_camera c = fixture_camera(96);
+            arbor_render_request r = request;
+            r.volume = &v.record();
+            r.camera = &c;
+            r.volume_revision = ++revision;
+            FixtureImage image(256, 256);
+            return cancellation("render(96^3 u8 into 256x256)",
+                                [&](arbor_task *task) { return t.render(p_, &r, &image.record(), task); });
         });
         const auto *t2 = static_cast<const arbor_renderer_v2 *>(p_->get_interface(p_, ARBOR_INTERFACE_RENDERER_2));
         if (!t2)

@@ -1,6 +1,7 @@
-// conformance_fixtures.hpp - small, valid inputs for every plugin kind that
-// the conformance checks feed to plugins: a ramp volume of any voxel type, a
-// three-branch tree with measures, transfer functions, a camera, an image.
+// conformance_fixtures.hpp - valid inputs for every plugin kind that the
+// conformance checks feed to plugins: a ramp volume of any voxel type and
+// size (1x1x1 up), a three-branch tree with measures, a tree of any size (a
+// lone root; thousands of branches), transfer functions, a camera, an image.
 #pragma once
 
 #include "branch_tree_arrays.hpp"
@@ -8,14 +9,21 @@
 #include <arbor/arbor.h>
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace arbor {
 
-// An n^3 volume of `type` whose values ramp with the voxel index.
+// An n^3 (or nx*ny*nz) volume of `type` whose values ramp with the voxel
+// index (every 100 voxels).
 class FixtureVolume {
 public:
-    FixtureVolume(arbor_voxel_type type, int64_t n);
+    FixtureVolume(arbor_voxel_type type, int64_t n) : FixtureVolume(type, n, n, n) {}
+    FixtureVolume(arbor_voxel_type type, int64_t nx, int64_t ny, int64_t nz);
+    // The smallest and largest stored value.
+    std::pair<double, double> value_range() const;
+    // False when a floating-point voxel is NaN or infinite.
+    bool all_finite() const;
     arbor_volume &record() { return record_; }
 
 private:
@@ -29,8 +37,16 @@ private:
 class FixtureTree {
 public:
     FixtureTree();
+    // `branches` branches (1: the root alone): each branch's children lie
+    // inside its value interval, four to a parent, maxima and minima in
+    // turn, measures shrinking with depth; every relative measure in [0, 1].
+    explicit FixtureTree(uint32_t branches);
     const arbor_branch_tree &record() const { return arrays_.record(); }
     arbor_measure_rows rows() const;   // every branch as a row
+    // Branches first .. first + count - 1 as rows (a batch without the root
+    // when first > 0).
+    arbor_measure_rows rows(uint32_t first, uint32_t count) const;
+    uint32_t size() const { return record().branch_count; }
     arbor_measure_rows schema() const; // columns only
 
 private:

@@ -8,20 +8,11 @@ Volume run_filter(PluginInstance &filter, const Volume &input, ProgressSink *pro
     const auto &table = filter.interface<arbor_filter_v1>(ARBOR_INTERFACE_FILTER);
     const arbor_volume in = input.view();
     arbor_voxel_type out_type = ARBOR_VOXEL_UNKNOWN;
-    arbor_status s;
-    {
-        const auto lock = filter.serial();
-        s = table.output_type(filter.get(), &in, &out_type);
-    }
-    filter.check(s, "choosing the output voxel type");
+    filter.check(filter.call("filter.output_type", table.output_type, &in, &out_type), "choosing the output voxel type");
     Volume output = Volume::allocate(out_type, input.geometry(), input.mapping(), max_bytes);
     arbor_volume out = output.view();
     Task task(progress, std::move(stop));
-    {
-        const auto lock = filter.serial();
-        s = table.apply(filter.get(), &in, &out, task.get());
-    }
-    filter.check(s, "filtering the volume");
+    filter.check(filter.call("filter.apply", table.apply, &in, &out, task.get()), "filtering the volume");
     return output;
 }
 

@@ -60,18 +60,15 @@ PluginInstance &PluginInstance::operator=(PluginInstance &&other) noexcept
 
 void PluginInstance::release()
 {
-    if (plugin_) {
-        const auto lock = serial();
-        plugin_->destroy(plugin_);
-    }
+    if (plugin_)
+        call("plugin.destroy", plugin_->destroy);
     plugin_ = nullptr;
 }
 
 const arbor_params_v1 *PluginInstance::params() const
 {
-    const auto lock = serial();
-    const auto *p =
-        static_cast<const arbor_params_v1 *>(plugin_->get_interface(plugin_, ARBOR_INTERFACE_PARAMS));
+    const auto *p = static_cast<const arbor_params_v1 *>(
+        call("plugin.get_interface", plugin_->get_interface, ARBOR_INTERFACE_PARAMS));
     if (p && (!p->count || !p->describe || !p->get || !p->set))
         return nullptr;
     return p;
@@ -80,11 +77,9 @@ const arbor_params_v1 *PluginInstance::params() const
 std::vector<const arbor_param_desc *> PluginInstance::param_descriptions() const
 {
     std::vector<const arbor_param_desc *> out;
-    const arbor_params_v1 *p = params();
-    const auto lock = serial();
-    if (p)
-        for (uint32_t i = 0, n = p->count(plugin_); i < n; ++i)
-            if (const arbor_param_desc *d = p->describe(plugin_, i))
+    if (const arbor_params_v1 *p = params())
+        for (uint32_t i = 0, n = call("params.count", p->count); i < n; ++i)
+            if (const arbor_param_desc *d = call("params.describe", p->describe, i))
                 out.push_back(d);
     return out;
 }
@@ -102,12 +97,7 @@ void PluginInstance::set_param(const std::string &param_id, const arbor_param_va
     const arbor_params_v1 *p = params();
     if (!p)
         throw PluginError(ARBOR_ERROR_NOT_FOUND, id() + " has no parameters");
-    arbor_status s;
-    {
-        const auto lock = serial();
-        s = p->set(plugin_, param_id.c_str(), &value);
-    }
-    check(s, "setting parameter '" + param_id + "'");
+    check(call("params.set", p->set, param_id.c_str(), &value), "setting parameter '" + param_id + "'");
 }
 
 arbor_param_value PluginInstance::get_param(const std::string &param_id) const
@@ -117,19 +107,13 @@ arbor_param_value PluginInstance::get_param(const std::string &param_id) const
         throw PluginError(ARBOR_ERROR_NOT_FOUND, id() + " has no parameters");
     arbor_param_value v{};
     v.struct_size = sizeof(v);
-    arbor_status s;
-    {
-        const auto lock = serial();
-        s = p->get(plugin_, param_id.c_str(), &v);
-    }
-    check(s, "reading parameter '" + param_id + "'");
+    check(call("params.get", p->get, param_id.c_str(), &v), "reading parameter '" + param_id + "'");
     return v;
 }
 
 std::string PluginInstance::last_error() const
 {
-    const auto lock = serial();
-    const char *e = plugin_->last_error ? plugin_->last_error(plugin_) : nullptr;
+    const char *e = plugin_->last_error ? call("plugin.last_error", plugin_->last_error) : nullptr;
     return e ? e : "";
 }
 

@@ -1,9 +1,12 @@
 // plugin_instance.hpp - an owned plugin instance and typed access to its
 // interfaces and parameters.  Every failing call becomes a PluginError whose
-// message names the plugin, what the host was doing and the plugin's reason.
+// message names the plugin, what the host was doing and the plugin's reason;
+// every call into the plugin goes through call(), so a crash in it names the
+// plugin and the call (plugin_call.hpp).
 #pragma once
 
 #include "host_services.hpp"
+#include "plugin_call.hpp"
 
 #include <arbor/arbor.h>
 
@@ -11,6 +14,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace arbor {
@@ -38,15 +42,21 @@ public:
     const arbor_plugin_descriptor &descriptor() const { return *plugin_->descriptor; }
     std::string id() const { return plugin_->descriptor->id; }
 
+    // function(instance, args...), one of the plugin's functions, as the call
+    // `what` ("filter.apply"): a crash inside it names the plugin and `what`.
+    template <class Function, class... Args>
+    auto call(const char *what, Function function, Args &&...args) const
+    {
+        const auto lock = serial();
+        const PluginCall in(host_->source().c_str(), what);
+        return function(plugin_, std::forward<Args>(args)...);
+    }
+
     // The table of an interface; throws PluginError when it is missing.
     template <class Table>
     const Table &interface(const char *interface_id) const
     {
-        const void *t = nullptr;
-        {
-            const auto lock = serial();
-            t = plugin_->get_interface(plugin_, interface_id);
-        }
+        const void *t = call("plugin.get_interface", plugin_->get_interface, interface_id);
         if (!t)
             throw PluginError(ARBOR_ERROR_UNSUPPORTED,
                               id() + " does not offer interface " + interface_id);
@@ -60,9 +70,9 @@ public:
     void set_param(const std::string &param_id, const arbor_param_value &value);
     arbor_param_value get_param(const std::string &param_id) const;
 
-    // Held around every call into the plugin: for a plugin whose descriptor
-    // sets ARBOR_PLUGIN_FLAG_SERIALIZE a lock on the one mutex all its
-    // instances in this process share, else no lock at all.
+    // Held by call() around every call into the plugin: for a plugin whose
+    // descriptor sets ARBOR_PLUGIN_FLAG_SERIALIZE a lock on the one mutex all
+    // its instances in this process share, else no lock at all.
     std::unique_lock<std::mutex> serial() const;
 
     // Messages the plugin logs go to `sink` (nullptr: the host log).

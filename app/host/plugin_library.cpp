@@ -1,6 +1,7 @@
 #include "plugin_library.hpp"
 
 #include "descriptor_rules.hpp"
+#include "plugin_call.hpp"
 
 #include <dlfcn.h>
 
@@ -12,11 +13,16 @@ std::unique_ptr<PluginLibrary> PluginLibrary::load(const std::filesystem::path &
 {
     std::unique_ptr<PluginLibrary> lib(new PluginLibrary());
     lib->path_ = path;
+    lib->name_ = path.filename().string();
+    const char *caller = lib->name_.c_str(); // what a crash report names
     dlerror();
     // RTLD_NODELETE: a plugin's code stays mapped after dlclose.  Libraries
     // it pulls in (VTK's object factories, for one) may keep pointers into it
     // that their own exit handlers follow.
-    lib->handle_ = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
+    {
+        const PluginCall in(caller, "dlopen (the library's initialisers)");
+        lib->handle_ = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
+    }
     if (!lib->handle_) {
         const char *e = dlerror();
         throw PluginRefused(std::string("cannot be loaded: ") + (e ? e : "unknown dlopen error"));
@@ -45,20 +51,33 @@ std::unique_ptr<PluginLibrary> PluginLibrary::load(const std::filesystem::path &
     lib->entry_ = entry;
 
     lib->host_ = std::make_unique<HostIdentity>(path.filename().string());
-    const arbor_status s = entry->init(lib->host_->get(), path.c_str());
+    arbor_status s;
+    {
+        const PluginCall in(caller, "entry.init");
+        s = entry->init(lib->host_->get(), path.c_str());
+    }
     if (s != ARBOR_OK)
         throw PluginRefused(std::string("init failed (") + arbor_status_name(s) + ")");
     lib->initialised_ = true;
 
-    const uint32_t count = entry->plugin_count();
+    uint32_t count;
+    {
+        const PluginCall in(caller, "entry.plugin_count");
+        count = entry->plugin_count();
+    }
     if (count == 0)
         throw PluginRefused("holds no plugins");
     if (count > 1000)
         throw PluginRefused("claims " + std::to_string(count) + " plugins (at most 1000)");
     std::set<std::string> ids;
     for (uint32_t i = 0; i < count; ++i) {
-        const arbor_plugin_descriptor *d = entry->plugin_descriptor(i);
-        std::string problem = check_descriptor(d);
+        const arbor_plugin_descriptor *d;
+        std::string problem;
+        {
+            const PluginCall in(caller, "entry.plugin_descriptor");
+            d = entry->plugin_descriptor(i);
+            problem = check_descriptor(d); // reads the plugin's strings
+        }
         if (problem.empty() && !ids.insert(d->id).second)
             problem = "plugin id '" + std::string(d->id) + "' appears twice in the library";
         if (!problem.empty()) {
@@ -74,8 +93,10 @@ std::unique_ptr<PluginLibrary> PluginLibrary::load(const std::filesystem::path &
 
 PluginLibrary::~PluginLibrary()
 {
-    if (initialised_ && entry_)
+    if (initialised_ && entry_) {
+        const PluginCall in(name_.c_str(), "entry.deinit");
         entry_->deinit();
+    }
     if (handle_)
         dlclose(handle_);
 }

@@ -49,6 +49,7 @@ private:
     PluginLibrary() = default;
 
     std::filesystem::path path_;
+    std::string name_; // the file's name, for crash reports
     void *handle_ = nullptr;
     const arbor_plugin_entry *entry_ = nullptr;
     bool initialised_ = false;

@@ -10,6 +10,12 @@ namespace arbor {
 
 namespace fs = std::filesystem;
 
+std::string plugin_short_name(std::string_view id)
+{
+    const auto dot = id.rfind('.');
+    return std::string(dot == std::string_view::npos ? id : id.substr(dot + 1));
+}
+
 PluginRegistry::~PluginRegistry()
 {
     // Libraries unload in reverse order of loading.
@@ -102,6 +108,15 @@ const PluginInfo *PluginRegistry::find(std::string_view id) const
     return nullptr;
 }
 
+std::vector<const PluginInfo *> PluginRegistry::sharing_short_name(std::string_view short_name) const
+{
+    std::vector<const PluginInfo *> out;
+    for (const PluginInfo &p : plugins_)
+        if (plugin_short_name(p.descriptor->id) == short_name)
+            out.push_back(&p);
+    return out;
+}
+
 PluginInstance PluginRegistry::create(std::string_view id) const
 {
     const PluginInfo *info = find(id);
@@ -113,8 +128,13 @@ PluginInstance PluginRegistry::create(std::string_view id) const
                                                      "' (loaded: " + known + ")");
     }
     auto host = std::make_unique<HostIdentity>(std::string(id));
+    const char *caller = host->source().c_str(); // the id a crash report names; lives with the instance
     arbor_plugin *plugin = nullptr;
-    const arbor_status s = info->library->entry().create_plugin(host->get(), info->descriptor->id, &plugin);
+    arbor_status s;
+    {
+        const PluginCall in(caller, "entry.create_plugin");
+        s = info->library->entry().create_plugin(host->get(), info->descriptor->id, &plugin);
+    }
     if (s != ARBOR_OK || !plugin)
         throw PluginError(s == ARBOR_OK ? ARBOR_ERROR_INTERNAL : s,
                           std::string(id) + ": could not create an instance (" +
@@ -127,12 +147,16 @@ PluginInstance PluginRegistry::create(std::string_view id) const
     }
     PluginInstance instance(plugin, std::move(host));
     const char *iface = kind_interface_id(info->descriptor->kind);
-    if (!plugin->get_interface(plugin, iface))
+    if (!instance.call("plugin.get_interface", plugin->get_interface, iface))
         throw PluginError(ARBOR_ERROR_UNSUPPORTED,
                           std::string(id) + ": a " + info->descriptor->kind +
                               " plugin must offer interface " + iface);
     if (const arbor_params_v1 *params = instance.params()) {
-        const auto problems = check_param_set(plugin, *params);
+        std::vector<std::string> problems;
+        {
+            const PluginCall in(caller, "params.describe");
+            problems = check_param_set(plugin, *params);
+        }
         if (!problems.empty())
             throw PluginError(ARBOR_ERROR_INTERNAL,
                               std::string(id) + ": malformed parameter description: " + problems.front());

@@ -19,6 +19,12 @@
 
 namespace arbor {
 
+// A plugin's short name: the last part of its id ("itri" for
+// org.arbor.simplifier.itri).  It depends on the id alone, never on which
+// other plugins are installed; where two loaded plugins share it, it names
+// neither of them (and the full ids must be written).
+std::string plugin_short_name(std::string_view id);
+
 struct PluginInfo {
     const arbor_plugin_descriptor *descriptor;
     const PluginLibrary *library;
@@ -45,6 +51,8 @@ public:
     const std::vector<PluginInfo> &plugins() const { return plugins_; }
     std::vector<const PluginInfo *> plugins_of_kind(std::string_view kind) const;
     const PluginInfo *find(std::string_view id) const;
+    // The plugins, of any kind, whose short name is `short_name`.
+    std::vector<const PluginInfo *> sharing_short_name(std::string_view short_name) const;
     const std::vector<std::unique_ptr<PluginLibrary>> &libraries() const { return libraries_; }
 
     // Creates an instance; throws PluginError (unknown id, creation failure,

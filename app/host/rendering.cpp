@@ -42,24 +42,19 @@ void check_region(const PluginInstance &renderer, RenderedImage &frame, const Re
 
 bool renders_passes(const PluginInstance &renderer)
 {
-    const auto lock = renderer.serial();
-    return renderer.get()->get_interface(renderer.get(), ARBOR_INTERFACE_RENDERER_2) != nullptr;
+    return renderer.call("plugin.get_interface", renderer.get()->get_interface, ARBOR_INTERFACE_RENDERER_2) != nullptr;
 }
 
 RenderDevice render_device(const PluginInstance &renderer)
 {
     RenderDevice device;
-    std::unique_lock<std::mutex> lock = renderer.serial();
     const auto *table = static_cast<const arbor_render_device_v1 *>(
-        renderer.get()->get_interface(renderer.get(), ARBOR_INTERFACE_RENDER_DEVICE));
+        renderer.call("plugin.get_interface", renderer.get()->get_interface, ARBOR_INTERFACE_RENDER_DEVICE));
     if (!table || table->struct_size < ARBOR_MIN_SIZE(arbor_render_device_v1) || !table->describe)
         return device;
     arbor_render_device d{};
     d.struct_size = sizeof d;
-    const arbor_status status = table->describe(renderer.get(), &d);
-    if (lock.owns_lock())
-        lock.unlock(); // last_error() takes it again
-    if (status != ARBOR_OK)
+    if (const arbor_status status = renderer.call("render-device.describe", table->describe, &d); status != ARBOR_OK)
         throw PluginError(status, renderer.id() + " cannot say what it renders on: " + renderer.last_error());
     if (d.kind == ARBOR_DEVICE_CPU || d.kind == ARBOR_DEVICE_GPU || d.kind == ARBOR_DEVICE_SOFTWARE_GPU)
         device.kind = d.kind;
@@ -110,12 +105,7 @@ void render_region(PluginInstance &renderer, const arbor_render_request &request
         out.depth_stride = frame.width;
         out.label_visibility = frame.label_visibility.data();
         out.label_visibility_count = static_cast<uint32_t>(labels);
-        arbor_status s;
-        {
-            const auto lock = renderer.serial();
-            s = table.render(renderer.get(), &r, &out, task.get());
-        }
-        renderer.check(s, "rendering");
+        renderer.check(renderer.call("renderer.render", table.render, &r, &out, task.get()), "rendering");
     } else {
         if (pass.pass == ARBOR_RENDER_PASS_SUPERSAMPLE)
             throw PluginError(ARBOR_ERROR_UNSUPPORTED, renderer.id() + " offers arbor.renderer/1 only: no supersampling");
@@ -138,12 +128,7 @@ void render_region(PluginInstance &renderer, const arbor_render_request &request
         out.depth = target.depth.empty() ? nullptr : target.depth.data();
         out.label_visibility = frame.label_visibility.data();
         out.label_visibility_count = static_cast<uint32_t>(labels);
-        arbor_status s;
-        {
-            const auto lock = renderer.serial();
-            s = table.render(renderer.get(), &request, &out, task.get());
-        }
-        renderer.check(s, "rendering");
+        renderer.check(renderer.call("renderer.render", table.render, &request, &out, task.get()), "rendering");
         if (!whole)
             for (uint32_t y = region.y; y < region.y + region.height; ++y) {
                 const std::size_t at = std::size_t{y} * frame.width + region.x;

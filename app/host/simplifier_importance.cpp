@@ -81,12 +81,7 @@ topology::ImportanceFn simplifier_importance(PluginInstance &simplifier, const V
     const auto &table = simplifier.interface<arbor_simplifier_v1>(ARBOR_INTERFACE_SIMPLIFIER);
     auto measures = std::make_shared<MeasureTable>(mapping);
     const arbor_measure_rows schema = measures->rows(0);
-    arbor_status prepared;
-    {
-        const auto lock = simplifier.serial();
-        prepared = table.prepare(simplifier.get(), &schema);
-    }
-    simplifier.check(prepared, "preparing the simplifier");
+    simplifier.check(simplifier.call("simplifier.prepare", table.prepare, &schema), "preparing the simplifier");
     return [&simplifier, &table, measures](const std::vector<topology::BranchMeasures> &rows,
                                            std::vector<double> &out) {
         MeasureTable &m = *measures;
@@ -94,12 +89,8 @@ topology::ImportanceFn simplifier_importance(PluginInstance &simplifier, const V
         // Rows the plugin leaves unset stay NaN and are refused below.
         out.assign(rows.size(), std::numeric_limits<double>::quiet_NaN());
         const arbor_measure_rows batch = m.rows(static_cast<uint32_t>(rows.size()));
-        arbor_status ranked;
-        {
-            const auto lock = simplifier.serial();
-            ranked = table.importance(simplifier.get(), &batch, out.data());
-        }
-        simplifier.check(ranked, "ranking branches");
+        simplifier.check(simplifier.call("simplifier.importance", table.importance, &batch, out.data()),
+                         "ranking branches");
         for (std::size_t r = 0; r < rows.size(); ++r)
             if (!std::isfinite(out[r]) || out[r] < 0.0)
                 throw PluginError(ARBOR_ERROR_OUT_OF_RANGE,

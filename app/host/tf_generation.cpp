@@ -91,12 +91,7 @@ void depict(PluginInstance &depictor, const arbor_depiction_request &request, De
 {
     const auto &table = depictor.interface<arbor_depictor_v1>(ARBOR_INTERFACE_DEPICTOR);
     Task task(progress, stop);
-    arbor_status s;
-    {
-        const auto lock = depictor.serial();
-        s = table.depict(depictor.get(), &request, &out.record(), task.get());
-    }
-    depictor.check(s, "depicting the branches");
+    depictor.check(depictor.call("depictor.depict", table.depict, &request, &out.record(), task.get()), "depicting the branches");
     const arbor_depiction &d = out.record();
     for (uint32_t b = 0; b < d.branch_count; ++b) {
         const float v[] = {d.opacity_at_saddle[b], d.opacity_at_extremum[b], d.saturation[b]};
@@ -119,12 +114,7 @@ void generate_transfer_functions(PluginInstance &generator, const arbor_tf_reque
     arbor_tf_set &set = out.record();
     set.points = nullptr;
     set.depiction_by_host = 0;
-    arbor_status s;
-    {
-        const auto lock = generator.serial();
-        s = table.generate(generator.get(), &request, &set, task.get());
-    }
-    generator.check(s, "generating transfer functions");
+    generator.check(generator.call("tf-generator.generate", table.generate, &request, &set, task.get()), "generating transfer functions");
     const auto refuse = [&](const std::string &what) {
         throw PluginError(ARBOR_ERROR_OUT_OF_RANGE, generator.id() + " returned " + what);
     };

@@ -57,11 +57,8 @@ std::vector<ImporterChoice> rank_importers(const PluginRegistry &registry, const
             PluginInstance importer = registry.create(info->descriptor->id);
             const auto &table = importer.interface<arbor_importer_v1>(ARBOR_INTERFACE_IMPORTER);
             int32_t confidence = 0;
-            arbor_status s;
-            {
-                const auto lock = importer.serial();
-                s = table.probe(importer.get(), path.c_str(), head.data(), head.size(), &confidence);
-            }
+            const arbor_status s = importer.call("importer.probe", table.probe, path.c_str(), head.data(),
+                                                 head.size(), &confidence);
             if (s == ARBOR_OK && confidence > 0)
                 ranked.push_back({{info->descriptor->id, confidence}, suffix_matches(table.suffixes, path)});
         } catch (const PluginError &e) {
@@ -107,12 +104,8 @@ Volume import_volume(PluginInstance &importer, const fs::path &path, ProgressSin
     header.struct_size = sizeof(header);
     {
         Task task(progress, stop);
-        arbor_status s;
-        {
-            const auto lock = importer.serial();
-            s = table.read_header(importer.get(), path.c_str(), task.get(), &header);
-        }
-        importer.check(s, "reading the header of " + path.string());
+        importer.check(importer.call("importer.read_header", table.read_header, path.c_str(), task.get(), &header),
+                       "reading the header of " + path.string());
     }
     std::string problem = check_volume_header(header, max_bytes);
     if (problem.empty() && admit)
@@ -132,12 +125,8 @@ Volume import_volume(PluginInstance &importer, const fs::path &path, ProgressSin
     arbor_volume target = volume.view();
     {
         Task task(progress, stop);
-        arbor_status s;
-        {
-            const auto lock = importer.serial();
-            s = table.read_voxels(importer.get(), path.c_str(), task.get(), &target);
-        }
-        importer.check(s, "reading the voxels of " + path.string());
+        importer.check(importer.call("importer.read_voxels", table.read_voxels, path.c_str(), task.get(), &target),
+                       "reading the voxels of " + path.string());
     }
     return volume;
 }

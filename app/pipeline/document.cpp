@@ -12,10 +12,12 @@ namespace arbor::pipeline {
 Document default_document()
 {
     Document d;
-    d.simplifier.id = "itri";
-    d.appearance.depictor.id = "inclusion";
-    d.appearance.generator.id = "residue-flow";
-    d.appearance.legend.id = "neighbour";
+    // Full ids: a third party's plugin that shares a short name ("itri")
+    // must not change what the defaults mean.
+    d.simplifier.id = "org.arbor.simplifier.itri";
+    d.appearance.depictor.id = "org.arbor.depictor.inclusion";
+    d.appearance.generator.id = "org.arbor.tf.residue-flow";
+    d.appearance.legend.id = "org.arbor.depictor.neighbour";
     d.view.renderer.id = "auto"; // PluginCatalog::renderer_choice
     return d;
 }

@@ -15,8 +15,7 @@ std::string kind_noun(std::string_view kind)
 
 std::string short_name(const std::string &id)
 {
-    const auto dot = id.rfind('.');
-    return dot == std::string::npos ? id : id.substr(dot + 1);
+    return plugin_short_name(id);
 }
 
 std::string PluginCatalog::find(std::string_view kind, const std::string &name) const
@@ -24,24 +23,31 @@ std::string PluginCatalog::find(std::string_view kind, const std::string &name) 
     if (kind == ARBOR_KIND_RENDERER && name == "auto")
         return renderer_choice().id;
     const std::vector<const PluginInfo *> plugins = registry_.plugins_of_kind(kind);
-    std::vector<std::string> by_suffix;
+    std::vector<std::string> sharing;
     for (const PluginInfo *p : plugins) {
         const std::string id = p->descriptor->id;
         if (id == name)
             return id;
         if (short_name(id) == name)
-            by_suffix.push_back(id);
+            sharing.push_back(id);
     }
-    if (by_suffix.size() == 1)
-        return by_suffix.front();
-    std::string known;
+    if (sharing.size() == 1)
+        return sharing.front();
+    const auto listed = [](const std::vector<std::string> &ids, const char *last) {
+        std::string text;
+        for (std::size_t i = 0; i < ids.size(); ++i)
+            text += (i == 0 ? "" : i + 1 == ids.size() ? last : ", ") + ids[i];
+        return text;
+    };
+    if (sharing.size() > 1)
+        throw PluginNameError(kind_noun(kind) + " '" + name + "' is ambiguous: " + listed(sharing, " and ") +
+                              (sharing.size() == 2 ? " both" : " all") + " have the short name '" + name + "'; write the full id (" +
+                              listed(sharing, " or ") + ")");
+    std::vector<std::string> known;
     for (const PluginInfo *p : plugins)
-        known += (known.empty() ? "" : ", ") + std::string(p->descriptor->id);
-    if (by_suffix.size() > 1)
-        throw std::invalid_argument("'" + name + "' names several " + kind_noun(kind) + "s (" + known +
-                                    "): give the full id");
-    throw std::invalid_argument("no " + kind_noun(kind) + " '" + name + "' (there are: " +
-                                (known.empty() ? "none - see `arbor plugins`" : known) + ")");
+        known.push_back(p->descriptor->id);
+    throw PluginNameError("no " + kind_noun(kind) + " '" + name + "' (there are: " +
+                          (known.empty() ? "none - see `arbor plugins`" : listed(known, ", ")) + ")");
 }
 
 PluginInstance PluginCatalog::create(const std::string &id) const

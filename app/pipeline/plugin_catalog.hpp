@@ -1,5 +1,6 @@
 // plugin_catalog.hpp - the plugins a pipeline can use, found by kind and by
-// name (the id, or its last part: "itri" for org.arbor.simplifier.itri), and
+// name (the id, or its short name, the last part: "itri" for
+// org.arbor.simplifier.itri, unless another plugin of the kind has it), and
 // plugin settings checked against the plugins' own parameter descriptions.
 // That check is what lets a session save and restore a third party's plugin
 // without code of ours, and what turns a bad value into a clear message
@@ -35,6 +36,13 @@ public:
     std::string plugin_id, param_id;
 };
 
+// A name that is no plugin of the kind, or a short name two plugins of the
+// kind share (the message names both and says to write the full id).
+class PluginNameError : public std::invalid_argument {
+public:
+    using std::invalid_argument::invalid_argument;
+};
+
 class PluginCatalog {
 public:
     explicit PluginCatalog(const PluginRegistry &registry) : registry_(registry) {}
@@ -44,7 +52,9 @@ public:
     const PluginRegistry &registry() const { return registry_; }
 
     // The full id `name` stands for among the plugins of `kind`
-    // (ARBOR_KIND_*); throws std::invalid_argument listing those there are.
+    // (ARBOR_KIND_*): a full id always, a short name when no other plugin of
+    // the kind has it.  Throws PluginNameError listing those there are, or
+    // those that share the short name.
     std::string find(std::string_view kind, const std::string &name) const;
 
     // The setting with its full id, the plugin's version and every
@@ -96,7 +106,7 @@ std::map<std::string, std::string> read_params(const PluginInstance &instance);
 // their defaults (the form --filter takes).
 std::string describe_setting(const PluginSetting &setting, const std::vector<const arbor_param_desc *> &descriptions);
 
-// The last part of a plugin id ("itri").
+// The last part of a plugin id ("itri"): plugin_short_name.
 std::string short_name(const std::string &id);
 
 } // namespace arbor::pipeline

@@ -28,7 +28,7 @@ const PluginCatalog::RendererChoice &PluginCatalog::renderer_choice() const
 {
     std::call_once(choice_once_, [&] {
         if (!has(registry_, kCpu)) {
-            choice_ = {has(registry_, kGl) ? kGl : "cpu-raycast",
+            choice_ = {has(registry_, kGl) ? kGl : kCpu,
                        "the CPU ray caster is not installed"};
             return;
         }

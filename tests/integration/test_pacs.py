@@ -241,7 +241,7 @@ class Pacs(unittest.TestCase):
 
     def test_a_bad_date_is_refused(self):
         status, _, err = self.pacs("pacs", "find", self.node, "--study-date", "2002-06-04", check=False)
-        self.assertEqual(status, 1)
+        self.assertEqual(status, 2)  # a value the flag refuses: a wrong command line
         self.assertIn("YYYYMMDD", err)
 
     # -- retrieve -----------------------------------------------------------
