@@ -4,24 +4,29 @@
 // where every point goes to a point of the other diagram or to the diagonal
 // (cost ((death - birth) / 2)^p).
 //
-// Method: the optimal matching is a min-cost flow (a transportation problem)
-// on a sparse network, solved exactly by LEMON's network simplex:
+// Method: everything starts on the diagonal, at the sum of all diagonal
+// costs, and matching a to b changes it by the pair's gain
+//   g(a, b) = d(a, b)^p - diag(a) - diag(b);
+// the optimum is that sum plus a minimum-gain matching, a maximum-weight
+// bipartite b-matching solved exactly as a min-cost flow by LEMON's network
+// simplex (source -> a with a's multiplicity, a -> b at the gain, b -> sink,
+// source -> sink for what stays on the diagonal):
 //   - points on the diagonal are left out (they go to it at no cost);
 //     identical points are merged into one node with their multiplicity;
-//   - nodes: A's points (supply = multiplicity), B's points (demand), one
-//     diagonal node on each side (A's diagonal supplies |B|, B's demands |A|);
-//   - arcs: every point to the other side's diagonal, diagonal to diagonal
-//     at cost 0, and point-to-point arcs a -> b.  Only the pairs with
-//     d(a, b)^p < diag(a) + diag(b) can be in an optimal matching (otherwise
-//     sending both to the diagonal is no dearer), and of those only the ones
-//     that can lower the cost are ever added (column generation): the network
-//     starts with each point's nearest points of the other diagram, and after
-//     each solve a k-d tree walk (pruned by subtree bounds) finds every pair
-//     whose reduced cost under the solver's node potentials is negative; they
-//     are added and the problem is solved again.  When none is left the
-//     potentials are a feasible dual of the complete problem, which proves the
-//     flow optimal for it: the result is the exact optimum, not an
-//     approximation that depends on how many arcs were kept.
+//   - only pairs with a negative gain can be in an optimal matching (a pair
+//     with g >= 0 is no dearer sent to the diagonal), and they are all that
+//     is ever considered: a k-d tree walk lists them (pruned by subtree
+//     bounds), they split into connected components that are independent
+//     problems, and each is solved once - nothing is left out;
+//   - when there are too many to list (more than 8M: real-valued noise), they
+//     are generated: the network starts with each point's nearest points of
+//     the other diagram, and after each solve a walk finds every pair whose
+//     reduced cost under the solver's node potentials is negative; they are
+//     added and the problem solved again.  When none is left the potentials
+//     are a feasible dual of the complete problem, which proves the flow
+//     optimal for it.
+// Either way the result is the exact optimum, not an approximation that
+// depends on how many pairs are kept.
 //
 // Costs must be integers for the network simplex.  When every coordinate is
 // an integer and p is an integer (any integer-valued volume) the costs are
