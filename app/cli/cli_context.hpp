@@ -15,11 +15,14 @@
 #include <map>
 #include <stop_token>
 #include <string>
+#include <vector>
 
 namespace arbor::cli {
 
 struct Context {
     std::filesystem::path executable;
+    // The command line as given (argv), for the provenance of reports.
+    std::vector<std::string> command_line;
     PluginRegistry registry;
     TerminalProgress progress;
     uint64_t max_volume_bytes = 0;

@@ -1,22 +1,23 @@
-// `arbor compare <volume> --simplifiers itri,persistence,volume,hypervolume
-// --keep N --out DIR [--truth labels.nrrd]`: the comparison study.  The
-// contour tree is computed once; every simplifier decomposes and cuts it
-// with its own importance, so the runs differ in nothing else.
+// `arbor compare <volume> --simplifiers itri,n-measure:measures=persistence+volume
+// --keep 4,8,16,32 [--filter none --filter gaussian:sigma=1] --out DIR
+// [--truth labels.nrrd]`: a comparison study in one command.  The contour
+// tree is computed once per filter setting; every simplifier setting
+// decomposes it once with its own importance and every cut is made on that,
+// so the runs differ in nothing else.
 #include "command_pipeline.hpp"
 #include "commands.hpp"
 #include "comparison_report.hpp"
 #include "input_flags.hpp"
-#include "label_slices.hpp"
 #include "look_flags.hpp"
-#include "priority_lines.hpp"
+#include "provenance.hpp"
+#include "study_figures.hpp"
+#include "study_grid.hpp"
+#include "study_run.hpp"
 
-#include "pipeline/branch_importance.hpp"
+#include "io/json_writer.hpp"
 
-#include <algorithm>
 #include <cstdio>
 #include <memory>
-#include <numeric>
-#include <set>
 
 namespace arbor::cli {
 
@@ -30,65 +31,29 @@ struct CompareArgs {
     SimplifierFlags simplifier;
     std::string list = "itri,persistence,volume,hypervolume";
     CutFlags cut;
-    std::string out, truth;
+    std::string out, truth, truth_colors, scoring = "exclusive", axis = "axial";
+    std::optional<int64_t> slice;
+    double dpi = 150;
 };
 
-constexpr std::size_t kMaxPriorityColumns = 600;
-
-// One priority-line row per simplifier: its importance of the branches of
-// the first simplifier's decomposition (so every row shows the same
-// branches), and the level its own cut corresponds to.
-std::vector<PriorityRow> priority_rows(const std::vector<ComparedSimplifier> &runs,
-                                       const pipeline::PluginCatalog &catalog, const pipeline::CutChoice &request)
+std::vector<StudySimplifier> simplifier_settings(const CompareArgs &a, const pipeline::PluginCatalog &catalog)
 {
-    const topology::BranchDecomposition &ref = runs[0].run.branches;
-    std::vector<PriorityRow> rows;
-    for (const ComparedSimplifier &run : runs) {
-        PriorityRow row;
-        row.name = run.run.name;
-        row.values = pipeline::branch_importance(catalog, run.run.cut_result->decomposition->simplifier, ref);
-        if (request.threshold) {
-            row.threshold = *request.threshold;
-        } else {
-            // The first value a keep-N cut of this row would drop.
-            std::vector<double> sorted = row.values;
-            std::sort(sorted.begin(), sorted.end(), std::greater<>());
-            const std::size_t kept = request.keep.value_or(1) - 1; // the root is not a column
-            row.threshold = kept < sorted.size() ? sorted[kept] : 0.0;
-        }
-        rows.push_back(std::move(row));
+    std::vector<StudySimplifier> out;
+    for (const std::string &entry : simplifier_entries(a.list)) {
+        pipeline::PluginSetting spec = pipeline::parse_plugin_spec(entry, "--simplifiers");
+        pipeline::PluginSetting s;
+        a.simplifier.apply(s, spec.id, catalog);
+        for (const auto &[key, value] : spec.params)
+            s.params[key] = value; // the entry's own values beat --NAME.key flags
+        s = catalog.resolve(ARBOR_KIND_SIMPLIFIER, s);
+        for (const StudySimplifier &other : out)
+            if (other.setting == s)
+                throw std::invalid_argument("--simplifiers: " + entry + " is the same setting as " + other.label);
+        out.push_back({s, entry});
     }
-    // Columns: the most important branches of every row (so the kept ones and
-    // those just below the line are all visible), in branch order.
-    std::set<std::size_t> columns;
-    const std::size_t per_row =
-        std::max<std::size_t>(20, std::min(kMaxPriorityColumns / std::max<std::size_t>(rows.size(), 1),
-                                           3 * request.keep.value_or(50)));
-    for (const PriorityRow &row : rows) {
-        std::vector<std::size_t> idx(row.values.size());
-        std::iota(idx.begin(), idx.end(), std::size_t{0});
-        const std::size_t take = std::min(per_row, idx.size());
-        std::partial_sort(idx.begin(), idx.begin() + static_cast<std::ptrdiff_t>(take), idx.end(),
-                          [&](std::size_t a, std::size_t b) { return row.values[a] > row.values[b]; });
-        columns.insert(idx.begin(), idx.begin() + static_cast<std::ptrdiff_t>(take));
-    }
-    for (PriorityRow &row : rows) {
-        std::vector<double> shown;
-        for (std::size_t c : columns)
-            shown.push_back(row.values[c]);
-        row.values = std::move(shown);
-    }
-    return rows;
-}
-
-// The ground truth, read as any input is (through its importer).
-std::shared_ptr<const Volume> load_truth(const std::string &path, Context &context)
-{
-    CommandPipeline p(context, false);
-    pipeline::Document d = pipeline::default_document();
-    d.input.path = path;
-    p->set_document(d);
-    return p.run<Stage::Import>()->volume;
+    if (out.empty())
+        throw std::invalid_argument("--simplifiers is empty");
+    return out;
 }
 
 } // namespace
@@ -96,91 +61,96 @@ std::shared_ptr<const Volume> load_truth(const std::string &path, Context &conte
 void add_compare_command(CLI::App &app, Context &context)
 {
     CLI::App *sub = app.add_subcommand(
-        "compare", "Compare simplifiers on one contour tree: kept branches, overlaps, Dice, priority lines");
+        "compare", "A comparison study: simplifiers x cuts x filters on one contour tree per filter; kept "
+                   "branches, overlaps, Dice/precision/recall against a ground truth, priority lines, figures");
     auto a = std::make_shared<CompareArgs>();
     a->input.add_to(*sub, context);
-    a->filter.add_to(*sub, context);
+    a->filter.add_to(*sub, context,
+                     "A filter setting of the study: NAME[:key=value,...], filters of one chain joined by '+' "
+                     "(median:size=3+gaussian:sigma=1), none for the data as it is; give it several times to "
+                     "compare settings (the tree is computed once per setting); default none");
     sub->add_option("--simplifiers", a->list,
-                    "Comma-separated simplifier plugins (ids or their last parts); the first one's branches are "
-                    "the columns of the priority lines")
+                    "Simplifier settings: ids or their last parts, each with its own parameters "
+                    "(itri,n-measure:measures=persistence+volume,com.example.pv:exponent=2); one plugin may appear "
+                    "with several settings; the first one's branches are the columns of the priority lines")
         ->default_val("itri,persistence,volume,hypervolume");
-    a->cut.add_to(*sub, "Instead of --keep: keep branches whose importance exceeds T");
-    sub->add_option("--out", a->out, "Folder for report.json, report.csv, report.md and the PNGs")->required();
+    a->cut.add_to(*sub, "Instead of --keep: keep branches whose importance exceeds T; a comma list sweeps");
+    sub->add_option("--out", a->out,
+                    "Folder for report.json, timings.json, study.csv, report.csv, report.md and the figures")
+        ->required();
     sub->add_option("--truth", a->truth,
-                    "Ground-truth label map with the volume's dims (any importable format): Dice per label");
+                    "Ground-truth label map with the volume's dims (any importable format): Dice, precision and "
+                    "recall per structure; names and colours from a .ctbl beside it");
+    sub->add_option("--truth-colors", a->truth_colors,
+                    "3D Slicer colour table (.ctbl) naming the truth's labels (default: the one beside --truth)");
+    sub->add_option("--score", a->scoring,
+                    "Region of a kept branch: exclusive (the voxels labelled with it) or subtree (with every kept "
+                    "branch below it)")
+        ->check(CLI::IsMember({"exclusive", "subtree"}))
+        ->default_val("exclusive");
+    sub->add_option("--slice-axis", a->axis, "Slice of the label panels: axial, coronal or sagittal")
+        ->check(CLI::IsMember({"axial", "coronal", "sagittal"}))
+        ->default_val("axial");
+    sub->add_option("--slice", a->slice,
+                    "Index of the panels' slice (default: the one with the most ground-truth voxels, else the "
+                    "middle)");
+    sub->add_option("--dpi", a->dpi, "Resolution of the PNG figures (each has an SVG twin)")
+        ->check(CLI::Range(18.0, 2400.0))
+        ->default_val(150);
     a->simplifier.add_to(*sub, context, false);
     a->simplifier.used_with_several();
     context.add_command(sub, [a, &context]() {
         if (!a->cut.given())
-            throw std::invalid_argument("give --keep N or --threshold T");
-        const std::vector<std::string> keeps = a->cut.keeps();
-        if (keeps.size() > 1)
-            throw std::invalid_argument("--keep takes one value in `arbor compare`");
+            throw std::invalid_argument("give --keep N[,N...] or --threshold T[,T...]");
         CommandPipeline p(context, !a->input.no_cache());
         const pipeline::PluginCatalog &catalog = p->catalog();
         pipeline::Document d = pipeline::default_document();
         a->input.apply(d.input, catalog);
-        d.auto_denoise = false; // analysis sees the data as it is, unless a filter is asked for
-        a->filter.apply(d.filters, d.auto_denoise, catalog);
-        a->cut.apply(d.cut, keeps.empty() ? std::nullopt : std::optional(keeps[0]));
-        std::vector<pipeline::PluginSetting> simplifiers;
-        for (const std::string &name : split_list(a->list)) {
-            pipeline::PluginSetting s;
-            a->simplifier.apply(s, name, catalog);
-            if (std::any_of(simplifiers.begin(), simplifiers.end(), [&](const auto &x) { return x.id == s.id; }))
-                throw std::invalid_argument("--simplifiers names " + s.id + " twice");
-            simplifiers.push_back(std::move(s));
-        }
-        if (simplifiers.empty())
-            throw std::invalid_argument("--simplifiers is empty");
-        d.simplifier = simplifiers.front();
+        d.auto_denoise = false; // analysis sees the data as it is, unless filters are asked for
+
+        StudyRequest request;
+        for (auto &[label, chain] : a->filter.sweep_chains(catalog))
+            request.grid.filters.push_back({std::move(chain), label});
+        request.grid.simplifiers = simplifier_settings(*a, catalog);
+        request.grid.cuts = a->cut.cuts();
+        request.scoring = a->scoring == "subtree" ? RegionScoring::Subtree : RegionScoring::Exclusive;
+        request.truth_path = a->truth;
+        request.truth_colors_path = a->truth_colors;
+        if (!a->truth_colors.empty() && a->truth.empty())
+            throw std::invalid_argument("--truth-colors names the labels of a --truth; give one");
         p->set_document(d);
-        const auto filtered = p.run<Stage::Filter>();
-        std::shared_ptr<const Volume> truth;
-        if (!a->truth.empty()) {
-            truth = load_truth(a->truth, context);
-            if (truth->geometry().dims != filtered->volume->geometry().dims)
-                throw std::invalid_argument(a->truth + ": the ground truth's dims differ from the volume's");
-        }
         std::filesystem::create_directories(a->out);
 
-        const auto tree = p.run<Stage::ContourTree>();
-        ComparisonStudy study;
-        study.source = filtered->source;
-        study.volume = filtered->volume.get();
-        study.tree = tree.get();
-        study.request = d.cut;
-        for (const pipeline::PluginSetting &s : simplifiers) {
-            p->set_simplifier(s);
-            const auto cut = p.run<Stage::Cut>();
-            study.runs.emplace_back(cut, p.run<Stage::Labels>());
-        }
-        study.overlaps = kept_overlaps(study.runs, tree->tree);
-        if (truth) {
-            study.truth_source = a->truth;
-            study.truth = truth_scores(*truth, study.runs);
-        }
+        const StudyOutcome study = run_study(*p, context, request);
 
         const std::filesystem::path dir(a->out);
-        write_priority_lines(dir / "priority-lines.png",
-                             "Priority lines: branches of " + study.runs[0].run.id + " decomposition, " +
-                                 d.cut.describe(),
-                             priority_rows(study.runs, catalog, d.cut));
-        std::vector<LabelPanel> panels;
-        for (const ComparedSimplifier &c : study.runs)
-            panels.push_back({c.run.name + " (" + std::to_string(c.run.cut.kept.size()) + ")", &c.labels});
-        write_label_slices(dir / "labels-axial.png", *filtered->volume, panels);
-        study.images = {"priority-lines.png", "labels-axial.png"};
-        write_report_json(dir / "report.json", study);
-        write_report_csv(dir / "report.csv", study);
-        write_report_markdown(dir / "report.md", study);
-
-        std::printf("%s: contour tree of %zu nodes in %.2f s\n", filtered->source.c_str(), tree->tree.node_count(),
-                    tree->seconds);
-        for (const ComparedSimplifier &c : study.runs)
-            std::printf("  %-34s %8zu branches, %4zu kept, %.2f s\n", c.run.id.c_str(), c.run.branches.branches.size(),
-                        c.run.cut.kept.size(), c.run.seconds);
-        std::printf("report: %s\n", (dir / "report.md").string().c_str());
+        FigureOptions figures;
+        figures.dpi = a->dpi;
+        figures.axis = a->axis == "coronal" ? SliceAxis::Coronal
+                                            : (a->axis == "sagittal" ? SliceAxis::Sagittal : SliceAxis::Axial);
+        figures.slice = a->slice;
+        StudyReport report;
+        report.study = &study;
+        report.figures = write_study_figures(dir, study, figures);
+        const auto import = p.run<Stage::Import>();
+        report.provenance = [&](io::JsonWriter &j) {
+            ProvenanceParts parts;
+            parts.import = import.get();
+            parts.input = d.input;
+            for (const StudySimplifier &s : study.grid.simplifiers)
+                parts.plugins.emplace_back("simplifier", s.setting);
+            for (const FilterOutcome &f : study.filters)
+                for (const pipeline::PluginSetting &s : f.filter.chain)
+                    parts.plugins.emplace_back("filter (" + f.filter.label + ")", s);
+            write_provenance(j, context, catalog, parts);
+        };
+        write_report_json(dir / "report.json", report);
+        write_timings_json(dir / "timings.json", study);
+        write_study_csv(dir / "study.csv", study);
+        write_kept_csv(dir / "report.csv", study);
+        write_report_markdown(dir / "report.md", report);
+        std::printf("report: %s (study.csv, report.json, %zu figures)\n", (dir / "report.md").string().c_str(),
+                    report.figures.size() / 2);
         return 0;
     });
 }

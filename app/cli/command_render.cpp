@@ -9,7 +9,9 @@
 // a report of seconds per frame and per pass beside it.
 #include "command_pipeline.hpp"
 #include "commands.hpp"
+#include "provenance.hpp"
 #include "input_flags.hpp"
+#include "usage_error.hpp"
 #include "view_flags.hpp"
 
 #include "io/image_output.hpp"
@@ -40,7 +42,7 @@ struct RenderArgs {
 };
 
 // The frames through the writer, a line of progress each, and the report.
-int write_turntable(CommandPipeline &p, const RenderArgs &a)
+int write_turntable(CommandPipeline &p, const RenderArgs &a, const Context &context)
 {
     pipeline::TurntableOptions options;
     options.frames = a.orbit;
@@ -66,6 +68,9 @@ int write_turntable(CommandPipeline &p, const RenderArgs &a)
     const std::filesystem::path report = std::filesystem::path(a.output).string() + ".report.json";
     io::write_json_file(report, io::JsonLayout::indented, [&](io::JsonWriter &j) {
         j.field("format", "arbor-turntable-report/1");
+        const pipeline::Document d = p->document();
+        write_provenance(j, context, p->catalog(),
+                         provenance_of(d, p.run<Stage::Import>().get(), p.run<Stage::Filter>()->filters));
         j.field("output", std::filesystem::path(a.output).string());
         j.field("kind", writer.kind());
         j.field("frames", options.frames);
@@ -131,7 +136,7 @@ void add_render_command(CLI::App &app, Context &context)
         }
         a->input.apply(d.input, catalog);
         if (d.input.empty())
-            throw std::invalid_argument("no volume: give a file or folder, --phantom head or --session");
+            throw UsageError("no volume: give a file or folder, --phantom head or --session");
         a->filter.apply(d.filters, d.auto_denoise, catalog);
         if (!a->tf.empty()) {
             const pipeline::StoredTransferFunctions stored = pipeline::read_transfer_functions(a->tf);
@@ -142,7 +147,7 @@ void add_render_command(CLI::App &app, Context &context)
         a->view.apply(d.view, catalog);
         p->set_document(d);
         if (a->orbit > 0)
-            return write_turntable(p, *a);
+            return write_turntable(p, *a, context);
         const auto render = p.run<Stage::Render>();
         io::write_image(a->output, render->image);
         std::printf("%s: %u branches rendered by %s -> %s (%.0f%% covered)\n", p.run<Stage::Filter>()->source.c_str(),

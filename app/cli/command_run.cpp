@@ -14,7 +14,9 @@
 #include "commands.hpp"
 #include "input_flags.hpp"
 #include "look_flags.hpp"
+#include "provenance.hpp"
 #include "run_report.hpp"
+#include "usage_error.hpp"
 #include "view_flags.hpp"
 
 #include "core/ct_tissue.hpp"
@@ -150,7 +152,7 @@ void add_run_command(CLI::App &app, Context &context)
         const fs::path output(a->output);
         const std::string ext = output.extension().string();
         if (ext != ".png" && ext != ".exr")
-            throw std::invalid_argument(output.string() + ": images are written as .png or .exr");
+            throw UsageError(output.string() + ": images are written as .png or .exr");
         // The input is filtered once; its voxels need not stay beside the
         // filtered ones through the tree and the render.
         CommandPipeline p(context, !a->input.no_cache(), /*release_imported_voxels=*/true);
@@ -164,7 +166,7 @@ void add_run_command(CLI::App &app, Context &context)
         const std::vector<SweepPoint> points = sweep_points(axes);
         const bool sweep = points.size() > 1;
         if (sweep && !a->legend.empty())
-            throw std::invalid_argument("--legend names one file; a sweep writes one legend beside each image");
+            throw UsageError("--legend names one file; a sweep writes one legend beside each image");
 
         const fs::path report_path = a->report.empty() ? beside(output, ".report", ".json") : fs::path(a->report);
         for (const fs::path &f : {output, report_path})
@@ -231,6 +233,8 @@ void add_run_command(CLI::App &app, Context &context)
             io::write_contact_sheet(report.contact_sheet, report.filtered->source, tiles);
         }
         report.stage_runs = p->stage_runs();
+        report.provenance = provenance_text(
+            context, catalog, provenance_of(report.runs.front().document, report.import.get(), report.filtered->filters));
         write_run_report(report_path, report);
 
         for (const RenderedRun &run : report.runs) {

@@ -4,14 +4,18 @@
 // and the voxel -> branch label map.
 #include "command_pipeline.hpp"
 #include "commands.hpp"
+#include "provenance.hpp"
 #include "input_flags.hpp"
 #include "look_flags.hpp"
 #include "stage_timings.hpp"
+#include "usage_error.hpp"
 
+#include "io/json_writer.hpp"
 #include "io/label_map_output.hpp"
 #include "io/topology_json.hpp"
 
 #include <cstdio>
+#include <functional>
 #include <memory>
 
 namespace arbor::cli {
@@ -30,11 +34,12 @@ struct SimplifyArgs {
 };
 
 void write_json(const std::string &path, const pipeline::FilterResult &in, const pipeline::ContourTreeResult &tree,
-                const pipeline::CutResult &cut)
+                const pipeline::CutResult &cut, const std::function<void(io::JsonWriter &)> &provenance)
 {
     const pipeline::DecompositionResult &d = *cut.decomposition;
     io::write_json_file(path, io::JsonLayout::indented, [&](io::JsonWriter &j) {
         j.field("format", "arbor-simplified-tree/1");
+        provenance(j);
         io::write_volume_summary(j, in.source, in.volume->geometry());
         {
             const io::JsonWriter::Scope simplifier = j.object("simplifier");
@@ -75,7 +80,7 @@ void add_simplify_command(CLI::App &app, Context &context)
     sub->add_flag("--timings", a->timings, "Print per-stage seconds and peak memory on stderr");
     context.add_command(sub, [a, &context]() {
         if (!a->cut.given())
-            throw std::invalid_argument("give --keep N or --threshold T");
+            throw UsageError("give --keep N or --threshold T");
         refuse_lists({a->simplifier.names(), a->cut.keeps(), {}, {}, {}}, "simplify");
         CommandPipeline p(context, !a->input.no_cache());
         pipeline::Document d = pipeline::default_document();
@@ -89,7 +94,10 @@ void add_simplify_command(CLI::App &app, Context &context)
         const auto filtered = p.run<Stage::Filter>();
         const auto tree = p.run<Stage::ContourTree>();
         const auto cut = p.run<Stage::Cut>();
-        write_json(a->json, *filtered, *tree, *cut);
+        write_json(a->json, *filtered, *tree, *cut, [&](io::JsonWriter &j) {
+            write_provenance(j, context, p->catalog(),
+                             provenance_of(p->document(), p.run<Stage::Import>().get(), filtered->filters));
+        });
         if (!a->labels.empty()) {
             const auto labels = p.run<Stage::Labels>();
             io::write_label_map(a->labels, filtered->volume->geometry(),

@@ -5,8 +5,12 @@
 // branch.  The generator sees the branch tree only.
 #include "command_pipeline.hpp"
 #include "commands.hpp"
+#include "provenance.hpp"
+
+#include "io/json_writer.hpp"
 #include "input_flags.hpp"
 #include "look_flags.hpp"
+#include "usage_error.hpp"
 
 #include "io/legend_png.hpp"
 #include "pipeline/transfer_function_file.hpp"
@@ -65,7 +69,7 @@ void add_tf_command(CLI::App &app, Context &context)
         a->look.apply(d.appearance, point, catalog);
         if (!a->legend.empty()) {
             if (d.appearance.depictor.empty())
-                throw std::invalid_argument("--legend needs a depictor (--relation neighbour --select BRANCH)");
+                throw UsageError("--legend needs a depictor (--relation neighbour --select BRANCH)");
             // The legend is the chosen depictor's own drawing.
             d.appearance.legend = d.appearance.depictor;
             d.appearance.legend_size = a->legend_size;
@@ -78,7 +82,10 @@ void add_tf_command(CLI::App &app, Context &context)
         std::shared_ptr<const pipeline::LegendResult> legend;
         if (!a->legend.empty())
             legend = p.run<Stage::Legend>();
-        pipeline::write_transfer_functions(a->output, *tf, filtered->source);
+        pipeline::write_transfer_functions(a->output, *tf, filtered->source, [&](io::JsonWriter &j) {
+            write_provenance(j, context, p->catalog(),
+                             provenance_of(p->document(), p.run<Stage::Import>().get(), filtered->filters));
+        });
         if (legend)
             io::write_legend_png(a->legend, legend->size, legend->rgba);
         const pipeline::CutResult &cut = *tf->depiction->cut;

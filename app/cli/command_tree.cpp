@@ -3,9 +3,13 @@
 // --keep/--threshold also the simplified hierarchy and its voxel labels.
 #include "command_pipeline.hpp"
 #include "commands.hpp"
+#include "provenance.hpp"
+
+#include "io/json_writer.hpp"
 #include "input_flags.hpp"
 #include "look_flags.hpp"
 #include "stage_timings.hpp"
+#include "usage_error.hpp"
 
 #include "io/contour_tree_json.hpp"
 #include "io/label_map_output.hpp"
@@ -43,16 +47,16 @@ void add_tree_command(CLI::App &app, Context &context)
     sub->add_flag("--timings", a->timings, "Print per-stage seconds and peak memory on stderr");
     context.add_command(sub, [a, &context]() {
         if (!a->labels.empty() && !a->cut.given())
-            throw std::invalid_argument("--labels needs --keep or --threshold");
+            throw UsageError("--labels needs --keep or --threshold");
         const std::vector<std::string> keeps = a->cut.keeps();
         if (keeps.size() > 1)
-            throw std::invalid_argument("--keep takes one value in `arbor tree`");
+            throw UsageError("--keep takes one value in `arbor tree`");
         CommandPipeline p(context, !a->input.no_cache());
         pipeline::Document d = pipeline::default_document();
         a->input.apply(d.input, p->catalog());
         d.auto_denoise = false; // analysis sees the data as it is, unless a filter is asked for
         a->filter.apply(d.filters, d.auto_denoise, p->catalog());
-        d.simplifier = {"persistence", "", {}};
+        d.simplifier = {"org.arbor.simplifier.persistence", "", {}};
         a->cut.apply(d.cut, keeps.empty() ? std::nullopt : std::optional<std::string>(keeps[0]));
         p->set_document(d);
         const auto filtered = p.run<Stage::Filter>();
@@ -70,6 +74,10 @@ void add_tree_command(CLI::App &app, Context &context)
         timings.push_back({"branches+measures", decomposition->seconds});
         file.timings = &timings;
         file.cut = cut ? &cut->cut : nullptr;
+        file.annotate = [&](io::JsonWriter &j) {
+            write_provenance(j, context, p->catalog(),
+                             provenance_of(p->document(), p.run<Stage::Import>().get(), filtered->filters));
+        };
         io::write_contour_tree_json(a->json, file);
         if (cut && !a->labels.empty()) {
             const auto labels = p.run<Stage::Labels>();

@@ -12,6 +12,7 @@ void add_plugin_check_command(CLI::App &app, Context &context);
 void add_phantom_command(CLI::App &app, Context &context);
 void add_convert_command(CLI::App &app, Context &context);
 void add_pairs_command(CLI::App &app, Context &context);
+void add_diagram_distance_command(CLI::App &app, Context &context);
 void add_tree_command(CLI::App &app, Context &context);
 void add_simplify_command(CLI::App &app, Context &context);
 void add_compare_command(CLI::App &app, Context &context);

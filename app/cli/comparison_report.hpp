@@ -1,34 +1,40 @@
-// comparison_report.hpp - the report of `arbor compare`: report.json (all
-// of it, machine-readable), report.csv (one row per kept branch per
-// simplifier) and report.md (for people: summary, overlaps, Dice, the
-// images).
+// comparison_report.hpp - what `arbor compare` writes of a study:
+//   report.json   everything, with the provenance that reproduces it and no
+//                 timings (two runs of one study give the same bytes)
+//   timings.json  the seconds each stage took
+//   study.csv     tidy, one row per filter x cut x simplifier x truth
+//                 structure (one per filter x cut x simplifier without a
+//                 truth): the matched region, Dice, precision, recall
+//   report.csv    one row per kept branch of every cut
+//   report.md     for people: the settings, the scores, the figures
 #pragma once
 
-#include "comparison.hpp"
-
-#include "pipeline/document.hpp"
-#include "pipeline/stage_results.hpp"
+#include "study_run.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
+namespace arbor::io {
+class JsonWriter;
+}
+
 namespace arbor::cli {
 
-struct ComparisonStudy {
-    std::string source;
-    const Volume *volume = nullptr;
-    const pipeline::ContourTreeResult *tree = nullptr;
-    pipeline::CutChoice request;
-    std::vector<ComparedSimplifier> runs;
-    std::vector<Overlap> overlaps;
-    std::string truth_source; // empty: no ground truth
-    std::vector<TruthScore> truth;
-    std::vector<std::string> images; // file names in the output folder
+struct StudyReport {
+    const StudyOutcome *study = nullptr;
+    std::vector<std::string> figures;           // file names in the output folder
+    std::function<void(io::JsonWriter &)> provenance; // writes the "provenance" member
 };
 
-void write_report_json(const std::filesystem::path &path, const ComparisonStudy &study);
-void write_report_csv(const std::filesystem::path &path, const ComparisonStudy &study);
-void write_report_markdown(const std::filesystem::path &path, const ComparisonStudy &study);
+void write_report_json(const std::filesystem::path &path, const StudyReport &report);
+void write_timings_json(const std::filesystem::path &path, const StudyOutcome &study);
+void write_study_csv(const std::filesystem::path &path, const StudyOutcome &study);
+void write_kept_csv(const std::filesystem::path &path, const StudyOutcome &study);
+void write_report_markdown(const std::filesystem::path &path, const StudyReport &report);
+
+// "keep 16" / "threshold 0.05": the cut as the tables name it.
+std::string cut_name(const pipeline::CutChoice &cut);
 
 } // namespace arbor::cli

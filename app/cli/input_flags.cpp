@@ -1,11 +1,28 @@
 #include "input_flags.hpp"
 
+#include "usage_error.hpp"
+
 #include "io/phantom.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <stdexcept>
 
 namespace arbor::cli {
+
+namespace {
+
+// A --filter NAME[:key=value,...] as a setting (the id as given).
+pipeline::PluginSetting filter_spec(const std::string &spec)
+{
+    try {
+        return parse_plugin_spec(spec, "--filter");
+    } catch (const std::invalid_argument &e) {
+        throw UsageError(e.what());
+    }
+}
+
+} // namespace
 
 std::vector<std::string> split_list(const std::string &list)
 {
@@ -45,7 +62,9 @@ void InputFlags::add_to(CLI::App &command, Context &context)
     phantom_option_->group("Input");
     path_option_->group("Input");
     importer_option_ = command.add_option(
-        "--importer", importer_, "Importer plugin id (default: chosen by probing the file)")->group("Input");
+        "--importer", importer_,
+        "Importer plugin, by short name or id (loaded: " + plugin_names(context.registry, ARBOR_KIND_IMPORTER) +
+            "); default: chosen by probing the file")->group("Input");
     series_option_ = command.add_option("--series", series_,
                                         "DICOM folders: the series to read, by Series Instance UID or its number in "
                                         "`arbor dicom ls` (needed when the folder holds several)")
@@ -83,7 +102,7 @@ void InputFlags::apply(pipeline::InputChoice &input, const pipeline::PluginCatal
     }
     if (input.phantom) {
         if (importer_option_->count() || series_option_->count())
-            throw std::invalid_argument("--importer and --series read files; --phantom needs neither");
+            throw UsageError("--importer and --series read files; --phantom needs neither");
         return;
     }
     if (importer_option_->count()) {
@@ -95,8 +114,8 @@ void InputFlags::apply(pipeline::InputChoice &input, const pipeline::PluginCatal
             if (importer_flags_.given_for(p->descriptor->id))
                 flagged.push_back(p->descriptor->id);
         if (flagged.size() > 1)
-            throw std::invalid_argument("flags for several importers were given (" + flagged[0] + ", " + flagged[1] +
-                                        "); choose one with --importer");
+            throw UsageError("flags for several importers were given (" + flagged[0] + ", " + flagged[1] +
+                             "); choose one with --importer");
         if (flagged.size() == 1)
             input.importer.id = flagged[0];
     }
@@ -106,12 +125,15 @@ void InputFlags::apply(pipeline::InputChoice &input, const pipeline::PluginCatal
         input.importer.params["series"] = series_;
 }
 
-void FilterFlags::add_to(CLI::App &command, Context &context)
+void FilterFlags::add_to(CLI::App &command, Context &context, const std::string &help)
 {
     command
         .add_option("--filter", specs_,
-                    "Denoise first: NAME[:key=value,...], e.g. gaussian:sigma=1.5, median:size=3, bilateral, "
-                    "nlmeans:h=0.05; repeat for a chain applied in order; none for no filter")
+                    help.empty() ? "Denoise first: NAME[:key=value,...], NAME a filter's short name or id (loaded: " +
+                                       plugin_names(context.registry, ARBOR_KIND_FILTER) +
+                                       "), e.g. gaussian:sigma=1.5; repeat for a chain applied in order; none for no "
+                                       "filter"
+                                 : help)
         ->group("Input");
     flags_.add(command, context.registry, ARBOR_KIND_FILTER, "Filter options");
     context.flag_names.add(flags_);
@@ -126,27 +148,76 @@ void FilterFlags::apply(std::vector<pipeline::PluginSetting> &chain, bool &auto_
         for (const std::string &spec : specs_) {
             if (spec == "none") {
                 if (specs_.size() > 1)
-                    throw std::invalid_argument("--filter none cannot be combined with other filters");
+                    throw UsageError("--filter none cannot be combined with other filters");
                 continue;
             }
-            pipeline::PluginSetting s = parse_plugin_spec(spec, "--filter");
+            pipeline::PluginSetting s = filter_spec(spec);
             s.id = catalog.find(ARBOR_KIND_FILTER, s.id);
             chain.push_back(std::move(s));
         }
     }
-    for (pipeline::PluginSetting &s : chain) {
-        pipeline::PluginSetting flagged{s.id, "", {}};
-        flags_.apply(flagged, true);
-        for (const auto &[key, value] : flagged.params)
-            if (specs_.empty())
-                s.params[key] = value; // over a session's chain
-            else
-                s.params.try_emplace(key, value); // --filter NAME:key=value beats --NAME.key
-    }
+    apply_flags(chain, !specs_.empty());
     for (const std::string &id : flags_.given_plugins())
         if (std::none_of(chain.begin(), chain.end(), [&](const auto &s) { return s.id == id; }))
             log_message(ARBOR_LOG_WARNING, "", "flags for " + id + " were given but it is not in the filter chain; "
                                                                     "ignored");
+}
+
+void FilterFlags::apply_flags(std::vector<pipeline::PluginSetting> &chain, bool given) const
+{
+    for (pipeline::PluginSetting &s : chain) {
+        pipeline::PluginSetting flagged{s.id, "", {}};
+        flags_.apply(flagged, true);
+        for (const auto &[key, value] : flagged.params)
+            if (!given)
+                s.params[key] = value; // over a session's chain
+            else
+                s.params.try_emplace(key, value); // --filter NAME:key=value beats --NAME.key
+    }
+}
+
+std::vector<std::pair<std::string, std::vector<pipeline::PluginSetting>>>
+FilterFlags::sweep_chains(const pipeline::PluginCatalog &catalog) const
+{
+    std::vector<std::pair<std::string, std::vector<pipeline::PluginSetting>>> chains;
+    for (const std::string &spec : specs_) {
+        std::vector<pipeline::PluginSetting> chain;
+        if (spec != "none")
+            for (const std::string &part : split_filter_chain(spec)) {
+                pipeline::PluginSetting s = filter_spec(part);
+                s.id = catalog.find(ARBOR_KIND_FILTER, s.id);
+                chain.push_back(std::move(s));
+            }
+        apply_flags(chain, true);
+        for (const auto &[text, other] : chains)
+            if (other == chain)
+                throw UsageError("--filter " + spec + " is the same setting as --filter " + text);
+        chains.emplace_back(spec, std::move(chain));
+    }
+    if (chains.empty())
+        chains.emplace_back("none", std::vector<pipeline::PluginSetting>{});
+    for (const std::string &id : flags_.given_plugins())
+        if (std::none_of(chains.begin(), chains.end(), [&](const auto &entry) {
+                return std::any_of(entry.second.begin(), entry.second.end(), [&](const auto &s) { return s.id == id; });
+            }))
+            log_message(ARBOR_LOG_WARNING, "", "flags for " + id + " were given but no --filter uses it; ignored");
+    return chains;
+}
+
+std::vector<std::string> split_filter_chain(const std::string &spec)
+{
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    for (std::size_t i = 0; i < spec.size(); ++i)
+        if (spec[i] == '+' && i + 1 < spec.size() && std::isalpha(static_cast<unsigned char>(spec[i + 1]))) {
+            parts.push_back(spec.substr(start, i - start));
+            start = i + 1;
+        }
+    parts.push_back(spec.substr(start));
+    for (const std::string &p : parts)
+        if (p.empty())
+            throw UsageError("--filter " + spec + ": an empty filter in the chain");
+    return parts;
 }
 
 } // namespace arbor::cli

@@ -13,6 +13,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace arbor::cli {
@@ -46,17 +47,31 @@ private:
 // Without --filter the pipeline denoises automatically when noise dominates.
 class FilterFlags {
 public:
-    void add_to(CLI::App &command, Context &context);
+    // `help`: the --filter text when the command reads it otherwise (a
+    // study's settings, sweep_chains()).
+    void add_to(CLI::App &command, Context &context, const std::string &help = {});
     bool given() const { return !specs_.empty(); }
     // With --filter: the chain given (and no automatic denoising).  Without:
     // the filter flags apply to the filters of the chain there is (a session's).
     void apply(std::vector<pipeline::PluginSetting> &chain, bool &auto_denoise,
                const pipeline::PluginCatalog &catalog) const;
 
+    // A study's reading: each --filter is one setting of the sweep, its
+    // filters joined by '+' ("median:size=3+gaussian:sigma=1"), "none" the
+    // unfiltered data; the filter flags apply to every chain.  One empty
+    // chain without --filter.  Each with its text as given ("none" for none).
+    std::vector<std::pair<std::string, std::vector<pipeline::PluginSetting>>>
+    sweep_chains(const pipeline::PluginCatalog &catalog) const;
+
 private:
+    void apply_flags(std::vector<pipeline::PluginSetting> &chain, bool given) const;
     std::vector<std::string> specs_;
     PluginFlags flags_;
 };
+
+// "median:size=3+gaussian:sigma=1e+3" -> {"median:size=3", "gaussian:sigma=1e+3"}:
+// a '+' joins filters where a plugin name (a letter) follows it.
+std::vector<std::string> split_filter_chain(const std::string &spec);
 
 using pipeline::parse_plugin_spec; // "gaussian:sigma=1.5,radius=2" -> the setting (id as given)
 

@@ -1,6 +1,7 @@
 #include "look_flags.hpp"
 
 #include "input_flags.hpp"
+#include "usage_error.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -17,8 +18,9 @@ void SimplifierFlags::add_to(CLI::App &command, Context &context, bool choice)
     if (choice)
         command
             .add_option("--simplifier", name_,
-                        "Simplifier plugin: an id or its last part (itri, persistence, volume, hypervolume, "
-                        "n-measure); default itri; `arbor run` sweeps a comma list")
+                        "Simplifier plugin, by short name or id (loaded: " +
+                            plugin_names(context.registry, ARBOR_KIND_SIMPLIFIER) +
+                            "); default itri; `arbor run` sweeps a comma list")
             ->type_name("NAME[,NAME...]");
     flags_.add(command, context.registry, ARBOR_KIND_SIMPLIFIER, "Simplifier options");
     context.flag_names.add(flags_);
@@ -38,9 +40,9 @@ void CutFlags::add_to(CLI::App &command, const std::string &threshold_help)
 {
     auto *keep = command
                      .add_option("--keep", keep_,
-                                 "Keep the N most important branches (root included); `arbor run` sweeps a comma list")
+                                 "Keep the N most important branches (root included); `arbor run` and `arbor compare` sweep a comma list")
                      ->type_name("N[,N...]");
-    auto *threshold = command.add_option("--threshold", threshold_, threshold_help)->check(CLI::Range(0.0, 1.0));
+    auto *threshold = command.add_option("--threshold", threshold_, threshold_help)->type_name("T");
     keep->excludes(threshold);
     command.add_flag("--keep-background", keep_background_,
                      "Also keep basins and bumps that lie wholly in the background's values (the noise in the "
@@ -54,28 +56,68 @@ std::vector<std::string> CutFlags::keeps() const
         char *end = nullptr;
         const double n = std::strtod(k.c_str(), &end);
         if (*end || !(n >= 1) || n != std::floor(n) || n > 1e9)
-            throw std::invalid_argument("--keep " + k + ": a number of branches, 1 or more");
+            throw UsageError("--keep " + k + ": a number of branches, 1 or more");
+    }
+    return out;
+}
+
+std::vector<double> CutFlags::thresholds() const
+{
+    std::vector<double> out;
+    for (const std::string &t : split_list(threshold_)) {
+        char *end = nullptr;
+        const double x = std::strtod(t.c_str(), &end);
+        if (*end || !(x >= 0 && x <= 1))
+            throw UsageError("--threshold " + t + ": a relative importance in [0, 1]");
+        out.push_back(x);
     }
     return out;
 }
 
 void CutFlags::apply(pipeline::CutChoice &cut, const std::optional<std::string> &keep) const
 {
+    const std::vector<double> levels = thresholds();
+    if (levels.size() > 1)
+        throw UsageError("--threshold takes one value here (`arbor compare` sweeps a list)");
     if (keep) {
         cut.keep = std::stoull(*keep);
         cut.threshold.reset();
-    } else if (threshold_) {
-        cut.threshold = *threshold_;
+    } else if (!levels.empty()) {
+        cut.threshold = levels[0];
         cut.keep.reset();
     }
     if (keep_background_)
         cut.keep_background = true;
 }
 
+std::vector<pipeline::CutChoice> CutFlags::cuts() const
+{
+    std::vector<pipeline::CutChoice> out;
+    for (const std::string &k : keeps()) {
+        pipeline::CutChoice c;
+        c.keep = std::stoull(k);
+        out.push_back(c);
+    }
+    for (const double t : thresholds()) {
+        pipeline::CutChoice c;
+        c.threshold = t;
+        out.push_back(c);
+    }
+    for (pipeline::CutChoice &c : out)
+        c.keep_background = keep_background_;
+    for (std::size_t i = 0; i < out.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (out[i] == out[j])
+                throw UsageError("the cut " + out[i].describe() + " is given twice");
+    return out;
+}
+
 void AppearanceFlags::add_to(CLI::App &command, Context &context)
 {
     generator_option_ =
-        command.add_option("--generator", generator_, "Transfer-function generator (residue-flow, histogram-ramp)")
+        command.add_option("--generator", generator_,
+                           "Transfer-function generator, by short name or id (loaded: " +
+                               plugin_names(context.registry, ARBOR_KIND_TF_GENERATOR) + "); default residue-flow")
             ->group("Transfer functions");
     command.add_option("--flow-rate", flow_rate_, "Flow rate Q (the generator's parameter flow-rate); `arbor run` sweeps a comma list")
         ->type_name("Q[,Q...]")
@@ -90,8 +132,9 @@ void AppearanceFlags::add_to(CLI::App &command, Context &context)
         ->check(CLI::NonNegativeNumber)
         ->group("Transfer functions");
     relation_option_ = command.add_option("--relation", relation_,
-                                          "Relationship to depict: inclusion (default), neighbour, none, or a "
-                                          "depictor plugin's id")
+                                          "Relationship to depict: a depictor by short name or id (loaded: " +
+                                              plugin_names(context.registry, ARBOR_KIND_DEPICTOR) +
+                                              "), or none; default inclusion")
                            ->group("Transfer functions");
     lut_option_ = command.add_option("--lut-size", lut_size_, "Entries of each baked lookup table (default 256)")
                       ->check(CLI::Range(2, 65536))
@@ -136,9 +179,9 @@ void AppearanceFlags::apply(pipeline::Appearance &look, const SweepPoint &point,
     if (select_)
         look.selected = *select_;
     if (look.depictor.empty() && look.selected && relation_option_->count() && relation_ == "none")
-        throw std::invalid_argument("--select needs a relationship to depict (--relation inclusion or neighbour)");
+        throw UsageError("--select needs a relationship to depict (--relation inclusion or neighbour)");
     if (!look.depictor.empty() && pipeline::short_name(look.depictor.id) == "neighbour" && !look.selected)
-        throw std::invalid_argument("--relation neighbour needs --select BRANCH");
+        throw UsageError("--relation neighbour needs --select BRANCH");
 
     if (generator_option_->count())
         look.generator = {catalog.find(ARBOR_KIND_TF_GENERATOR, generator_), "", {}};

@@ -42,14 +42,19 @@ private:
 class CutFlags {
 public:
     void add_to(CLI::App &command, const std::string &threshold_help);
-    bool given() const { return !keep_.empty() || threshold_; }
+    bool given() const { return !keep_.empty() || !threshold_.empty(); }
     // The --keep list, each checked to be a whole number >= 1.
     std::vector<std::string> keeps() const;
+    // The --threshold list, each checked to lie in [0, 1].
+    std::vector<double> thresholds() const;
+    // Sets the cut to `keep`, or else to the one --threshold (a list is
+    // refused: only a study sweeps thresholds).
     void apply(pipeline::CutChoice &cut, const std::optional<std::string> &keep) const;
+    // A study's cuts: one per --keep or --threshold value.
+    std::vector<pipeline::CutChoice> cuts() const;
 
 private:
-    std::string keep_;
-    std::optional<double> threshold_;
+    std::string keep_, threshold_;
     bool keep_background_ = false;
 };
 

@@ -2,10 +2,15 @@
 // first (their parameters become flags), parses, runs one subcommand.
 //
 // Exit status: 0 success, 1 the work failed (bad input, plugin error),
-// 2 the command line was wrong, 130 cancelled with Ctrl-C.
+// 2 the command line was wrong (what CLI11 refuses; a UsageError; a plugin
+// name that names no plugin or two; a plugin flag's value the plugin
+// refuses or a required one not given), 130 cancelled with Ctrl-C.  A crash
+// inside a plugin is named on stderr before the process dies of it
+// (host/plugin_call.hpp).
 #include "cli_context.hpp"
 #include "commands.hpp"
 #include "interrupt_watch.hpp"
+#include "usage_error.hpp"
 
 #include "core/cancelled.hpp"
 #include "pipeline/plugin_catalog.hpp"
@@ -31,6 +36,7 @@ int main(int argc, char **argv)
     }
 
     context.executable = cli::executable_path(argv[0]);
+    context.command_line.assign(argv, argv + argc);
     context.max_volume_bytes = default_max_volume_bytes();
     context.registry.load_directories(PluginRegistry::default_search_path(context.executable));
 
@@ -59,6 +65,7 @@ int main(int argc, char **argv)
     cli::add_view_command(app, context);
     cli::add_denoise_study_command(app, context);
     cli::add_pairs_command(app, context);
+    cli::add_diagram_distance_command(app, context);
     cli::add_plugins_command(app, context);
     cli::add_plugin_check_command(app, context);
 
@@ -91,7 +98,13 @@ int main(int argc, char **argv)
         const std::string flag = context.flag_names.flag_of(e.plugin_id, e.param_id);
         const char *how = e.problem == pipeline::SettingError::Problem::Missing ? " (give " : " (from ";
         log_message(ARBOR_LOG_ERROR, "", std::string(e.what()) + (flag.empty() ? "" : how + flag + ")"));
-        return 1;
+        return 2; // sessions report their own values as SessionError
+    } catch (const pipeline::PluginNameError &e) {
+        log_message(ARBOR_LOG_ERROR, "", e.what());
+        return 2;
+    } catch (const cli::UsageError &e) {
+        log_message(ARBOR_LOG_ERROR, "", e.what());
+        return 2;
     } catch (const std::exception &e) {
         if (interrupt.interrupted()) {
             log_message(ARBOR_LOG_ERROR, "", "cancelled");

@@ -263,6 +263,8 @@ void write_run_report(const std::filesystem::path &path, const RunReport &r)
         md << "\n## First run: " << r.runs.front().caption << "\n\n";
         markdown_run(md, r, r.runs.front(), j["runs"][0], seconds);
     }
+    if (!r.provenance.empty())
+        j["provenance"] = json::parse(r.provenance);
     j["input"] = input_json(r);
     j["contour_tree"] = {{"nodes", r.tree->tree.node_count()},
                          {"arcs", r.tree->tree.arc_count()},

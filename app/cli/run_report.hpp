@@ -35,6 +35,7 @@ struct RunReport {
     std::vector<RenderedRun> runs;
     std::array<uint64_t, pipeline::kStageCount> stage_runs{};
     std::filesystem::path contact_sheet, session, labels; // empty when not written
+    std::string provenance; // the "provenance" object as JSON text (provenance.hpp)
 };
 
 // A label's share of the image's visibility (0 when nothing is visible).

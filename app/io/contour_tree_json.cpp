@@ -89,6 +89,8 @@ void write_contour_tree_json(const std::filesystem::path &path, const ContourTre
 {
     write_json_file(path, JsonLayout::compact, [&](JsonWriter &j) {
         j.field("format", "arbor-contour-tree/2");
+        if (f.annotate)
+            f.annotate(j);
         write_volume(j, f);
         write_nodes(j, f);
         write_arcs(j, f);

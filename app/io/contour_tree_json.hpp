@@ -15,10 +15,13 @@
 #include "topology/topology_pipeline.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace arbor::io {
+
+class JsonWriter;
 
 struct ContourTreeFile {
     std::string source; // what the volume was read from
@@ -27,6 +30,8 @@ struct ContourTreeFile {
     const topology::BranchDecomposition *branches = nullptr;
     const std::vector<topology::StageTiming> *timings = nullptr; // of the tree and the decomposition
     const topology::SimplificationCut *cut = nullptr;            // optional: "simplified"
+    // Optional: writes members of the caller's (the report's provenance).
+    std::function<void(JsonWriter &)> annotate;
 };
 
 // Replaces `path` only once the whole file is written.

@@ -49,17 +49,26 @@ uint64_t branches_of(const Volume &v)
 
 } // namespace
 
-std::size_t plateau_index(const std::vector<uint64_t> &branches)
+std::optional<std::size_t> find_plateau(const std::vector<uint64_t> &branches)
 {
     std::vector<double> drop;
     for (std::size_t i = 0; i + 1 < branches.size(); ++i)
         drop.push_back(std::log(std::max<double>(static_cast<double>(branches[i]), 1)) -
                        std::log(std::max<double>(static_cast<double>(branches[i + 1]), 1)));
-    const double steepest = drop.empty() ? 0.0 : *std::max_element(drop.begin(), drop.end());
-    for (std::size_t i = 0; i < drop.size(); ++i)
-        if (i > 0 && drop[i] < 0.2 * steepest)
+    if (drop.empty())
+        return std::nullopt;
+    // Only after the steepest step: a weak start that changes nothing yet is
+    // not a plateau.
+    const std::size_t steepest = static_cast<std::size_t>(std::max_element(drop.begin(), drop.end()) - drop.begin());
+    for (std::size_t i = steepest + 1; i < drop.size(); ++i)
+        if (drop[i] < 0.2 * drop[steepest])
             return i;
-    return branches.empty() ? 0 : branches.size() - 1;
+    return std::nullopt;
+}
+
+std::size_t plateau_index(const std::vector<uint64_t> &branches)
+{
+    return find_plateau(branches).value_or(branches.empty() ? 0 : branches.size() - 1);
 }
 
 DenoiseAdvice advise_denoising(const Volume &volume, const GaussianFn &gaussian, std::stop_token stop)

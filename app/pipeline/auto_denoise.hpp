@@ -7,8 +7,8 @@
 // side): Gaussian smoothing from 0 to 3 times the smallest voxel spacing in
 // steps of a half, the branch count at each from its extrema (no contour
 // tree needed, topology/critical_points.hpp), and the strength chosen is the
-// study's plateau: the first after which a step removes less than a fifth
-// (in log terms) of what the steepest step removed - noise gone, structures
+// study's plateau: the first after the steepest step whose next step removes
+// less than a fifth (in log terms) of what the steepest removed - noise gone, structures
 // not yet melting - but never more than two voxel spacings, beyond which
 // structures a few voxels across (a small tumour) melt.
 #pragma once
@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <stop_token>
 #include <string>
 #include <vector>
@@ -41,8 +42,13 @@ using GaussianFn = std::function<Volume(const Volume &volume, double sigma_mm)>;
 
 DenoiseAdvice advise_denoising(const Volume &volume, const GaussianFn &gaussian, std::stop_token stop = {});
 
-// The study's plateau over branch counts at increasing strengths (also what
-// `arbor denoise-study` marks).
+// The plateau of a study over branch counts at increasing strengths (what
+// `arbor denoise-study` marks): after the steepest step, the first point
+// whose next step removes less than a fifth (in log terms) of what the
+// steepest removed.  None when every later step still removes more: the
+// tree is still shrinking fast at the range's end.
+std::optional<std::size_t> find_plateau(const std::vector<uint64_t> &branches);
+// The plateau, else the study's last strength (automatic denoising).
 std::size_t plateau_index(const std::vector<uint64_t> &branches);
 
 } // namespace arbor::pipeline

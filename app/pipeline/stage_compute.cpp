@@ -1,5 +1,7 @@
 #include "stage_compute.hpp"
 
+#include "volume_checksum.hpp"
+
 #include "branch_style.hpp"
 #include "memory_plan.hpp"
 
@@ -80,6 +82,7 @@ std::shared_ptr<const void> import(StageContext &c)
         r->source = in.path.string();
         r->importer = {setting.id, importer->descriptor().version, read_params(*importer)};
     }
+    r->checksum = volume_checksum(*r->volume);
     r->seconds = watch.lap();
     return r;
 }
@@ -97,7 +100,7 @@ std::shared_ptr<const void> filter(StageContext &c)
         c.job.report("looking at the noise", 0.0);
         PluginSetting gaussian;
         try {
-            gaussian = c.catalog.resolve(ARBOR_KIND_FILTER, {"gaussian", "", {}});
+            gaussian = c.catalog.resolve(ARBOR_KIND_FILTER, {"org.arbor.filter.gaussian", "", {}});
         } catch (const std::invalid_argument &) {
             c.job.write(ARBOR_LOG_INFO, "", "no gaussian filter installed: not denoising automatically");
         }
@@ -534,11 +537,7 @@ std::shared_ptr<const void> legend(StageContext &c)
     PluginSlot::Lease depictor = c.plugins.lease(a.legend, &c.job);
     const auto &table = depictor->interface<arbor_depictor_v1>(ARBOR_INTERFACE_DEPICTOR);
     Task task(&c.job, c.stop());
-    arbor_status s;
-    {
-        const auto lock = depictor->serial();
-        s = table.legend(depictor->get(), &request, &image, task.get());
-    }
+    const arbor_status s = depictor->call("depictor.legend", table.legend, &request, &image, task.get());
     if (s == ARBOR_ERROR_UNSUPPORTED)
         throw std::invalid_argument(depictor->id() + " draws no legend");
     depictor->check(s, "drawing the legend");

@@ -32,6 +32,7 @@ struct ImportResult {
     std::shared_ptr<const Volume> volume;
     std::string source;    // the path, or "phantom:head"
     PluginSetting importer; // as used: the values read back after the import (empty for phantoms)
+    std::string checksum;   // of the voxels and grid (volume_checksum.hpp)
     double seconds = 0.0;
 };
 

@@ -28,12 +28,14 @@ namespace {
 
 constexpr std::size_t kMaxMeasures = 16;
 
+// Measure ids separated by ',' or '+' ("persistence+volume" reads as a sum
+// of axes and fits in a comma-separated list of simplifier settings).
 std::vector<std::string> split_list(const std::string &text)
 {
     std::vector<std::string> out;
     std::size_t start = 0;
     while (start <= text.size()) {
-        std::size_t end = text.find(',', start);
+        std::size_t end = text.find_first_of(",+", start);
         if (end == std::string::npos)
             end = text.size();
         std::string item = text.substr(start, end - start);
@@ -51,8 +53,8 @@ public:
     explicit NMeasureSimplifier(const arbor_host *host)
         : Simplifier(kNMeasureDescriptor, host,
                      {sdk::ParamSpec::text("measures", "Measures", "persistence,volume,hypervolume")
-                          .hint("Comma-separated measure ids, at least two, e.g. persistence,volume or "
-                                "persistence,volume,hypervolume,relative-hypervolume")})
+                          .hint("Measure ids separated by commas or '+', at least two, e.g. persistence,volume or "
+                                "persistence+volume+hypervolume+relative-hypervolume")})
     {
     }
 

@@ -7,6 +7,7 @@ Expected values come from the data sets' READMEs in ../shared/data.
 import gzip
 import hashlib
 import json
+import math
 import os
 import pathlib
 import subprocess
@@ -182,10 +183,10 @@ class BadInput(unittest.TestCase):
         self.expect_failure("info", p, memory_limit_mb=2048)
 
     def test_raw_without_dimensions_names_the_flag(self):
-        self.expect_failure("info", DATA / "walnut/walnut.raw", words=("--raw.dims",))
+        self.expect_failure("info", DATA / "walnut/walnut.raw", words=("--raw.dims",), status=2)
 
     def test_raw_with_an_invalid_flag_value(self):
-        self.expect_failure("info", DATA / "walnut/walnut.raw", "--raw.dims", "0,96,114", words=("dims",))
+        self.expect_failure("info", DATA / "walnut/walnut.raw", "--raw.dims", "0,96,114", words=("dims",), status=2)
 
     def test_raw_larger_than_the_file(self):
         self.expect_failure("info", DATA / "walnut/walnut.raw", "--raw.dims", "512,512,512",
@@ -459,43 +460,45 @@ class Simplify(unittest.TestCase):
     def test_compare_on_the_noisy_phantom_with_ground_truth(self):
         phantom, truth, out = SCRATCH / "noisy.nrrd", SCRATCH / "truth.nrrd", SCRATCH / "compare-phantom"
         arbor("phantom", "--noise", 8, "--blobs", 20, "-o", phantom, "--labels", truth)
-        names = [l.split()[1] for l in (SCRATCH / "truth.ctbl").read_text().splitlines() if not l.startswith("#")]
         code, stdout, _ = arbor("compare", phantom, "--keep", 16, "--truth", truth, "--out", out)
         self.assertIn("report.md", stdout)
         r = json.loads((out / "report.json").read_text())
-        ids = [s["id"] for s in r["simplifiers"]]
+        ids = [s["id"] for s in r["study"]["simplifiers"]]
         self.assertEqual(ids, ["org.arbor.simplifier." + n for n in ("itri", "persistence", "volume", "hypervolume")])
-        for s in r["simplifiers"]:
-            self.assertEqual(s["kept_count"], 16)
-            self.assertEqual(len(s["kept"]), 16)
-            self.assertGreater(s["seconds"], 0)
-        self.assertEqual(len(r["overlaps"]), 6)
-        for o in r["overlaps"]:
+        result = r["results"][0]
+        for s in result["simplifiers"]:
+            self.assertEqual(s["cuts"][0]["kept_count"], 16)
+            self.assertEqual(len(s["cuts"][0]["kept"]), 16)
+        timings = json.loads((out / "timings.json").read_text())
+        for s in timings["filters"][0]["simplifiers"]:
+            self.assertGreater(s["decomposition_seconds"], 0)
+        self.assertEqual(len(result["overlaps"]), 6)
+        for o in result["overlaps"]:
             self.assertEqual(o["shared"] + o["only_a"], 15)
             self.assertAlmostEqual(o["jaccard"], o["shared"] / (o["shared"] + o["only_a"] + o["only_b"]))
-        tumour = next(t for t in r["truth"]["labels"] if names[t["label"]] == "tumour")
-        self.assertGreater(tumour["dice"]["org.arbor.simplifier.itri"]["dice"], 0.5)
-        self.assertLess(tumour["dice"]["org.arbor.simplifier.persistence"]["dice"], 0.1)
-        skull = next(t for t in r["truth"]["labels"] if names[t["label"]] == "skull")
-        for s in ids:
-            self.assertGreater(skull["dice"][s]["dice"], 0.8)
+        # The structures are named from the colour table beside the truth.
+        dice = {s["label"]: {t["name"]: t for t in s["cuts"][0]["truth"]} for s in result["simplifiers"]}
+        self.assertGreater(dice["itri"]["tumour"]["one_to_one"]["dice"], 0.5)
+        self.assertLess(dice["persistence"]["tumour"]["one_to_one"]["dice"], 0.1)
+        for s in dice:
+            self.assertGreater(dice[s]["skull"]["best_match"]["dice"], 0.8)
         rows = (out / "report.csv").read_text().splitlines()
         self.assertEqual(len(rows), 1 + 4 * 16)
-        self.assertTrue(rows[0].startswith("simplifier,label,branch,kind,importance"))
+        self.assertTrue(rows[0].startswith("filter,cut,simplifier,label,branch,parent_label,kind"))
         md = (out / "report.md").read_text()
-        self.assertIn("## Ground truth", md)
+        self.assertIn("### Dice with the ground truth", md)
         self.assertIn("![priority-lines.png](priority-lines.png)", md)
         w, h = png_size(out / "priority-lines.png")
         self.assertGreater(w, 600)
         self.assertGreater(h, 4 * 100)
         w, h = png_size(out / "labels-axial.png")
-        self.assertGreater(w, 5 * 128)
+        self.assertGreater(w, 600)
 
     def test_compare_on_a_real_volume(self):
         out = SCRATCH / "compare-engine"
         arbor("compare", DATA / "engine/engine.vti", "--keep", 10, "--simplifiers", "itri,volume", "--out", out)
         r = json.loads((out / "report.json").read_text())
-        self.assertEqual([s["kept_count"] for s in r["simplifiers"]], [10, 10])
+        self.assertEqual([s["cuts"][0]["kept_count"] for s in r["results"][0]["simplifiers"]], [10, 10])
         self.assertEqual(r["volume"]["dims"], [256, 256, 128])
         png_size(out / "labels-axial.png")
 
@@ -505,9 +508,9 @@ class Simplify(unittest.TestCase):
         arbor("compare", "--phantom", "head", "--phantom-size", 48, "--keep", 5, "--simplifiers",
               "volume-squared,org.arbor.simplifier.volume", "--out", out, env=env)
         r = json.loads((out / "report.json").read_text())
-        self.assertEqual(r["simplifiers"][0]["id"], "org.arbor.test.simplifier.volume-squared")
+        self.assertEqual(r["study"]["simplifiers"][0]["id"], "org.arbor.test.simplifier.volume-squared")
         # Squaring the volume ranks branches as the volume does.
-        self.assertEqual(r["overlaps"][0]["jaccard"], 1.0)
+        self.assertEqual(r["results"][0]["overlaps"][0]["jaccard"], 1.0)
 
     def test_a_plugin_built_against_the_abi_1_0_headers_runs_in_this_host(self):
         out = SCRATCH / "compare-abi-1-0"
@@ -517,7 +520,7 @@ class Simplify(unittest.TestCase):
         arbor("compare", "--phantom", "head", "--phantom-size", 48, "--keep", 5, "--simplifiers",
               "org.arbor.test.simplifier.abi-1-0,org.arbor.simplifier.volume", "--out", out, env=env)
         r = json.loads((out / "report.json").read_text())
-        self.assertEqual(r["overlaps"][0]["jaccard"], 1.0)
+        self.assertEqual(r["results"][0]["overlaps"][0]["jaccard"], 1.0)
 
     def test_bad_simplifiers_and_arguments_are_refused_clearly(self):
         (SCRATCH / "bad.json").unlink(missing_ok=True)
@@ -851,18 +854,35 @@ class Denoise(unittest.TestCase):
 
     def test_denoise_study_writes_csv_and_plot(self):
         out = SCRATCH / "study"
-        code, stdout, _ = arbor("denoise-study", *self.NOISY, "--to", 4, "--steps", 5, "--out", out)
+        code, stdout, _ = arbor("denoise-study", *self.NOISY, "--to", 16, "--steps", 9, "--out", out)
         rows = (out / "study.csv").read_text().splitlines()
         self.assertEqual(rows[0], "sigma,branches,minima,maxima,seconds,plateau")
         values = [r.split(",") for r in rows[1:]]
-        self.assertEqual(len(values), 5)
+        self.assertEqual(len(values), 9)
         counts = [int(v[1]) for v in values]
         self.assertGreater(counts[0], 5 * counts[-1])
         self.assertEqual(sum(int(v[5]) for v in values), 1)
         for v in values:
             self.assertEqual(int(v[1]), int(v[2]) + int(v[3]) - 1)
-        self.assertIn("suggested sigma", stdout)
-        self.assertEqual(png_size(out / "study.png"), (720, 440))
+        # The plateau: after the steepest step, the first whose next step
+        # removes under a fifth of it (in log terms), recomputed here.
+        drops = [math.log(a) - math.log(b) for a, b in zip(counts, counts[1:])]
+        steepest = max(drops)
+        plateau = next(i for i in range(1, len(drops)) if i > drops.index(steepest) and drops[i] < 0.2 * steepest)
+        self.assertEqual([int(v[5]) for v in values].index(1), plateau)
+        self.assertIn("suggested sigma = %s" % values[plateau][0], stdout)
+        w, h = png_size(out / "study.png")
+        self.assertGreater(w, 600)
+        self.assertTrue((out / "study.svg").read_text().startswith("<?xml"))
+
+    def test_denoise_study_says_when_no_plateau_lies_in_the_range(self):
+        out = SCRATCH / "study-short"
+        _, stdout, _ = arbor("denoise-study", *self.NOISY, "--to", 4, "--steps", 5, "--out", out)
+        rows = [r.split(",") for r in (out / "study.csv").read_text().splitlines()[1:]]
+        self.assertEqual([r[5] for r in rows], ["0"] * 5)
+        self.assertIn("no plateau between sigma = 0 and 4", stdout)
+        self.assertIn("try a larger --to", stdout)
+        self.assertNotIn("suggested", stdout)
 
     def test_bad_filter_specs_are_refused_clearly(self):
         for spec, message in (("blur", "no filter 'blur'"), ("gaussian:radius=2", "has no parameter 'radius'"),

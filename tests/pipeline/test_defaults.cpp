@@ -138,6 +138,10 @@ TEST(DenoisingStudy, ThePlateauIsWhereStepsStopPayingOff)
     EXPECT_EQ(pipeline::plateau_index({100000, 30000, 5000, 4000, 3500}), 2u);
     EXPECT_EQ(pipeline::plateau_index({1000, 999, 998}), 2u); // every step alike: none pays off less, the last
     EXPECT_EQ(pipeline::plateau_index({1000, 100, 10}), 2u);  // never flattens: the last
+    EXPECT_FALSE(pipeline::find_plateau({1000, 100, 10}));    // ... which is no plateau
+    // A weak start that changes little is not the plateau: it comes after
+    // the steepest step.
+    EXPECT_EQ(pipeline::find_plateau({1000, 990, 980, 100, 98}), 3u);
 }
 
 TEST(DenoisingStudy, ASmoothScanIsLeftAlone)
