@@ -19,6 +19,8 @@
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <string_view>
 
@@ -48,9 +50,47 @@ constexpr std::size_t kSniffBytes = 4096;
 constexpr int32_t kOtherVtkConfidence = 10;
 constexpr int32_t kSuffixConfidence = 30;
 
+// VTK 9.1's legacy structured-points reader dereferences a null pointer
+// when a data-set FIELD block before POINT_DATA cannot be read (it sets the
+// field data it failed to read and deletes it: a fuzzed file crashed it).
+// Its keywords are whitespace-separated words matched by their first five
+// letters, lower-cased, and may follow a number without a space ("0FIELD"
+// after ORIGIN's last value), so every word of the header after the title
+// is looked at, its leading number characters skipped, up to POINT_DATA or
+// CELL_DATA. Such blocks are refused before VTK reads them.
+constexpr std::size_t kLegacyHeaderBytes = 64 * 1024;
+
+void refuse_legacy_dataset_field(const std::string &path, const std::string &name)
+{
+    const std::string head = read_file_start(path, kLegacyHeaderBytes);
+    std::size_t at = 0;
+    for (int line = 0; line < 2 && at != std::string::npos; ++line) // "# vtk DataFile ...", the title
+        at = head.find('\n', at) == std::string::npos ? std::string::npos : head.find('\n', at) + 1;
+    while (at != std::string::npos && at < head.size()) {
+        const std::size_t start = head.find_first_not_of(" \t\r\n", at);
+        if (start == std::string::npos)
+            break;
+        const std::size_t end = std::min(head.find_first_of(" \t\r\n", start), head.size());
+        std::string word = head.substr(start, end - start);
+        for (char &c : word)
+            c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (word.rfind("point_data", 0) == 0 || word.rfind("cell_data", 0) == 0)
+            return;
+        const std::size_t letters = word.find_first_not_of("0123456789+-.e");
+        if (letters != std::string::npos && word.compare(letters, 5, "field") == 0)
+            sdk::fail(ARBOR_ERROR_UNSUPPORTED,
+                      name + ": a FIELD block before POINT_DATA (field data of the whole data set) is not "
+                             "read: VTK 9.1's legacy reader crashes on one it cannot read; write the "
+                             "image without it");
+        at = end;
+    }
+}
+
 VtkFileKind identify(const std::string &path, const std::string &name)
 {
     const VtkFileKind kind = classify_vtk_file(read_file_start(path, kSniffBytes));
+    if (kind.layout == VtkLayout::legacy)
+        refuse_legacy_dataset_field(path, name);
     switch (kind.layout) {
     case VtkLayout::unknown:
         sdk::fail(ARBOR_ERROR_FORMAT, name + ": not a VTK image file (it starts neither with an "
