@@ -13,6 +13,7 @@
 #include "study_figures.hpp"
 #include "study_grid.hpp"
 #include "study_run.hpp"
+#include "usage_error.hpp"
 
 #include "io/json_writer.hpp"
 
@@ -48,11 +49,11 @@ std::vector<StudySimplifier> simplifier_settings(const CompareArgs &a, const pip
         s = catalog.resolve(ARBOR_KIND_SIMPLIFIER, s);
         for (const StudySimplifier &other : out)
             if (other.setting == s)
-                throw std::invalid_argument("--simplifiers: " + entry + " is the same setting as " + other.label);
+                throw UsageError("--simplifiers: " + entry + " is the same setting as " + other.label);
         out.push_back({s, entry});
     }
     if (out.empty())
-        throw std::invalid_argument("--simplifiers is empty");
+        throw UsageError("--simplifiers is empty");
     return out;
 }
 
@@ -101,7 +102,7 @@ void add_compare_command(CLI::App &app, Context &context)
     a->simplifier.used_with_several();
     context.add_command(sub, [a, &context]() {
         if (!a->cut.given())
-            throw std::invalid_argument("give --keep N[,N...] or --threshold T[,T...]");
+            throw UsageError("give --keep N[,N...] or --threshold T[,T...]");
         CommandPipeline p(context, !a->input.no_cache());
         const pipeline::PluginCatalog &catalog = p->catalog();
         pipeline::Document d = pipeline::default_document();
@@ -117,7 +118,7 @@ void add_compare_command(CLI::App &app, Context &context)
         request.truth_path = a->truth;
         request.truth_colors_path = a->truth_colors;
         if (!a->truth_colors.empty() && a->truth.empty())
-            throw std::invalid_argument("--truth-colors names the labels of a --truth; give one");
+            throw UsageError("--truth-colors names the labels of a --truth; give one");
         p->set_document(d);
         std::filesystem::create_directories(a->out);
 

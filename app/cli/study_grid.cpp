@@ -1,4 +1,5 @@
 #include "study_grid.hpp"
+#include "usage_error.hpp"
 
 #include <cctype>
 #include <stdexcept>
@@ -32,7 +33,7 @@ std::vector<std::string> simplifier_entries(const std::string &list)
         const bool parameter = eq != std::string::npos && (colon == std::string::npos || colon > eq);
         if (parameter) {
             if (entries.empty() || entries.back().find(':') == std::string::npos)
-                throw std::invalid_argument("--simplifiers: '" + token +
+                throw UsageError("--simplifiers: '" + token +
                                             "' is a parameter, but no simplifier before it takes parameters "
                                             "(write NAME:key=value)");
             entries.back() += "," + token;

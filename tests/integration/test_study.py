@@ -207,11 +207,12 @@ class Study(unittest.TestCase):
             (["--keep", 4, "--filter", "gaussian:sigma=1", "--filter", "gaussian:sigma=1"], "same setting"),
             (["--keep", 4, "--filter", "+gaussian:sigma=1"], "empty filter"),
         )
+        cases += (([], "give --keep"), (["--keep", 4, "--truth-colors", "x.ctbl"], "names the labels of a --truth"))
         for extra, message in cases:
             with self.subTest(extra=extra):
                 code, _, err = arbor("compare", "--phantom", "head", "--phantom-size", 32, "--out",
                                      SCRATCH / "study-bad", *extra, check=False)
-                self.assertNotEqual(code, 0)
+                self.assertEqual(code, 2)  # a wrong command line
                 self.assertIn(message, err)
 
     def test_denoise_study_with_a_truth_plots_dice_and_says_when_no_plateau_is_in_range(self):
