@@ -39,10 +39,9 @@ std::string provenance_text(const Context &context, const pipeline::PluginCatalo
                             const ProvenanceParts &parts)
 {
     std::string text;
-    {
-        io::JsonWriter j(text);
-        write_provenance_value(j, context, catalog, parts);
-    }
+    io::JsonWriter j(text);
+    write_provenance_value(j, context, catalog, parts);
+    j.finish(); // the writer buffers: its text is complete only now
     return text;
 }
 

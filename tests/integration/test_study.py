@@ -106,6 +106,36 @@ class Study(unittest.TestCase):
         self.assertEqual(chains["none"], [])
         self.assertEqual(chains["gaussian:sigma=1"][0]["id"], "org.arbor.filter.gaussian")
 
+    def test_every_result_json_carries_the_provenance(self):
+        small = ("--phantom", "head", "--phantom-size", 32)
+        out = SCRATCH / "provenance"
+        out.mkdir(exist_ok=True)
+        pairs = out / "pairs.txt"
+        arbor("run", *small, "-o", out / "run.png", "--keep", 4)
+        arbor("tree", *small, "--json", out / "tree.json")
+        arbor("simplify", *small, "--keep", 4, "--json", out / "simplify.json")
+        arbor("tf", *small, "--keep", 4, "-o", out / "tf.json")
+        arbor("render", *small, "--orbit", 2, "-o", out / "orbit.gif")
+        arbor("pairs", *small, "-o", pairs)
+        _, distance, _ = arbor("diagram-distance", pairs, pairs, "--json")
+        results = {name: json.loads((out / name).read_text())
+                   for name in ("run.report.json", "tree.json", "simplify.json", "tf.json", "orbit.gif.report.json")}
+        results["diagram-distance"] = json.loads(distance)
+        for name, result in results.items():
+            with self.subTest(result=name):
+                p = result["provenance"]
+                self.assertTrue(p["arbor"]["version"])
+                self.assertRegex(p["arbor"]["commit"], r"^([0-9a-f]{40}(-modified)?|unknown)$")
+                self.assertIn(p["command_line"][1], name.replace("run.report", "run").replace("orbit.gif.report",
+                                                                                                "render"))
+                if name != "diagram-distance":
+                    self.assertEqual(p["input"]["phantom"]["size"], 32)
+                    self.assertRegex(p["input"]["checksum"], r"^xxh3-128:[0-9a-f]{32}$")
+        # Each plugin that took part, with every parameter's value.
+        roles = {x["role"]: x for x in results["run.report.json"]["provenance"]["plugins"]}
+        self.assertEqual(roles["simplifier"]["id"], "org.arbor.simplifier.itri")
+        self.assertIn("flow-rate", roles["generator"]["parameters"])
+
     def test_the_checksum_is_of_the_voxels_not_the_file(self):
         a, b = SCRATCH / "checksum-a", SCRATCH / "checksum-b"
         copy = SCRATCH / "study-noisy-copy.nhdr"
