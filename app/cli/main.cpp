@@ -6,10 +6,12 @@
 // name that names no plugin or two; a plugin flag's value the plugin
 // refuses or a required one not given), 130 cancelled with Ctrl-C.  A crash
 // inside a plugin is named on stderr before the process dies of it
-// (host/plugin_call.hpp).
+// (host/plugin_call.hpp); in an isolated one (--isolate, the default for
+// third-party libraries) it fails the call and `arbor` carries on.
 #include "cli_context.hpp"
 #include "commands.hpp"
 #include "interrupt_watch.hpp"
+#include "isolation_flags.hpp"
 #include "usage_error.hpp"
 
 #include "core/cancelled.hpp"
@@ -38,6 +40,14 @@ int main(int argc, char **argv)
     context.executable = cli::executable_path(argv[0]);
     context.command_line.assign(argv, argv + argc);
     context.max_volume_bytes = default_max_volume_bytes();
+    try {
+        const cli::IsolationChoice isolation = cli::isolation_from_command_line(argc, argv);
+        context.registry.set_isolation(
+            default_isolation(context.executable, isolation.mode, isolation.timeout_seconds));
+    } catch (const cli::UsageError &e) {
+        log_message(ARBOR_LOG_ERROR, "", e.what());
+        return 2;
+    }
     context.registry.load_directories(PluginRegistry::default_search_path(context.executable));
 
     CLI::App app{"Arbor: explore CT and MR volumes through their contour tree.\n"
@@ -49,6 +59,7 @@ int main(int argc, char **argv)
     bool verbose = false, quiet = false; // applied above, before plugins load
     app.add_flag("-v,--verbose", verbose, "Log debug messages");
     app.add_flag("-q,--quiet", quiet, "Log errors only");
+    cli::add_isolation_options(app);
     app.require_subcommand(1);
 
     cli::add_info_command(app, context);

@@ -47,6 +47,21 @@ std::string quoted(const char *s)
 
 } // namespace
 
+std::string check_entry_record(const arbor_plugin_entry *entry)
+{
+    const arbor_version v = entry->abi_version;
+    if (v.major != ARBOR_ABI_VERSION_MAJOR)
+        return "was built for Arbor ABI " + std::to_string(v.major) + "." + std::to_string(v.minor) + "." +
+               std::to_string(v.patch) + ", this host speaks ABI " + std::to_string(ARBOR_ABI_VERSION_MAJOR) +
+               ".x; rebuild it against SDK " + std::to_string(ARBOR_ABI_VERSION_MAJOR) + ".x";
+    if (entry->struct_size < ARBOR_MIN_SIZE(arbor_plugin_entry))
+        return "entry struct_size " + std::to_string(entry->struct_size) + " is smaller than " +
+               std::to_string(ARBOR_MIN_SIZE(arbor_plugin_entry));
+    if (!entry->init || !entry->deinit || !entry->plugin_count || !entry->plugin_descriptor || !entry->create_plugin)
+        return "entry has NULL functions";
+    return "";
+}
+
 const std::vector<std::string> &known_plugin_kinds()
 {
     static const std::vector<std::string> kinds = {

@@ -17,6 +17,10 @@ namespace arbor {
 const std::vector<std::string> &known_plugin_kinds();
 const char *kind_interface_id(std::string_view kind); // nullptr for an unknown kind
 
+// The library's entry record: its ABI major, size and functions; "" when
+// the host may call init.
+std::string check_entry_record(const arbor_plugin_entry *entry);
+
 // Reverse-DNS, lowercase, three or more dot-separated parts.
 std::string check_plugin_id(const char *id);
 // "MAJOR.MINOR.PATCH" with optional "-suffix".

@@ -1,6 +1,7 @@
 #include "plugin_library.hpp"
 
 #include "descriptor_rules.hpp"
+#include "isolated_library.hpp"
 #include "plugin_call.hpp"
 
 #include <dlfcn.h>
@@ -32,19 +33,9 @@ std::unique_ptr<PluginLibrary> PluginLibrary::load(const std::filesystem::path &
     if (!symbol)
         throw PluginRefused("has no '" ARBOR_ENTRY_SYMBOL "' entry symbol; not an Arbor plugin");
     const auto *entry = static_cast<const arbor_plugin_entry *>(symbol);
+    if (const std::string problem = check_entry_record(entry); !problem.empty())
+        throw PluginRefused(problem);
     const arbor_version v = entry->abi_version;
-    if (v.major != ARBOR_ABI_VERSION_MAJOR)
-        throw PluginRefused("was built for Arbor ABI " + std::to_string(v.major) + "." +
-                            std::to_string(v.minor) + "." + std::to_string(v.patch) +
-                            ", this host speaks ABI " + std::to_string(ARBOR_ABI_VERSION_MAJOR) +
-                            ".x; rebuild it against SDK " +
-                            std::to_string(ARBOR_ABI_VERSION_MAJOR) + ".x");
-    if (entry->struct_size < ARBOR_MIN_SIZE(arbor_plugin_entry))
-        throw PluginRefused("entry struct_size " + std::to_string(entry->struct_size) +
-                            " is smaller than " + std::to_string(ARBOR_MIN_SIZE(arbor_plugin_entry)));
-    if (!entry->init || !entry->deinit || !entry->plugin_count || !entry->plugin_descriptor ||
-        !entry->create_plugin)
-        throw PluginRefused("entry has NULL functions");
     if (v.minor > ARBOR_ABI_VERSION_MINOR)
         log_message(ARBOR_LOG_DEBUG, path.string(),
                     "built for a newer ABI minor (" + std::to_string(v.minor) + ") than the host's");
@@ -69,26 +60,57 @@ std::unique_ptr<PluginLibrary> PluginLibrary::load(const std::filesystem::path &
         throw PluginRefused("holds no plugins");
     if (count > 1000)
         throw PluginRefused("claims " + std::to_string(count) + " plugins (at most 1000)");
+    lib->accept(count, [&](uint32_t i) {
+        const PluginCall in(caller, "entry.plugin_descriptor");
+        return entry->plugin_descriptor(i);
+    });
+    return lib;
+}
+
+void PluginLibrary::accept(uint32_t count, const std::function<const arbor_plugin_descriptor *(uint32_t)> &describe)
+{
+    const char *caller = name_.c_str();
     std::set<std::string> ids;
     for (uint32_t i = 0; i < count; ++i) {
-        const arbor_plugin_descriptor *d;
+        const arbor_plugin_descriptor *d = describe(i);
         std::string problem;
         {
             const PluginCall in(caller, "entry.plugin_descriptor");
-            d = entry->plugin_descriptor(i);
             problem = check_descriptor(d); // reads the plugin's strings
         }
         if (problem.empty() && !ids.insert(d->id).second)
             problem = "plugin id '" + std::string(d->id) + "' appears twice in the library";
         if (!problem.empty()) {
             const std::string id = d && d->id && check_plugin_id(d->id).empty() ? d->id : "";
-            lib->refusals_.push_back({path.string(), id.empty() ? "#" + std::to_string(i) : id,
-                                      "descriptor " + std::to_string(i) + ": " + problem});
+            refusals_.push_back({path_.string(), id.empty() ? "#" + std::to_string(i) : id,
+                                 "descriptor " + std::to_string(i) + ": " + problem});
             continue;
         }
-        lib->accepted_.push_back(d);
+        accepted_.push_back(d);
     }
+}
+
+std::unique_ptr<PluginLibrary> PluginLibrary::load_isolated(const std::filesystem::path &path,
+                                                            const IsolationSettings &settings)
+{
+    std::unique_ptr<PluginLibrary> lib(new PluginLibrary());
+    lib->path_ = path;
+    lib->name_ = path.filename().string();
+    lib->isolated_ = std::make_unique<IsolatedLibrary>(path, settings); // throws PluginRefused
+    const auto &descriptors = lib->isolated_->descriptors();
+    if (lib->isolated_->abi_version().minor > ARBOR_ABI_VERSION_MINOR)
+        log_message(ARBOR_LOG_DEBUG, path.string(),
+                    "built for a newer ABI minor (" + std::to_string(lib->isolated_->abi_version().minor) +
+                        ") than the host's");
+    lib->accept(static_cast<uint32_t>(descriptors.size()), [&](uint32_t i) { return descriptors[i]; });
     return lib;
+}
+
+arbor_status PluginLibrary::create_plugin(const arbor_host *host, const char *plugin_id, arbor_plugin **out) const
+{
+    if (isolated_)
+        return isolated_->create_plugin(host, plugin_id, out);
+    return entry_->create_plugin(host, plugin_id, out);
 }
 
 PluginLibrary::~PluginLibrary()

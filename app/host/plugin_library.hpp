@@ -8,10 +8,12 @@
 #pragma once
 
 #include "host_services.hpp"
+#include "plugin_process.hpp"
 
 #include <arbor/plugin.h>
 
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -30,16 +32,25 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+class IsolatedLibrary;
+
 class PluginLibrary {
 public:
     // Throws PluginRefused with the reason.
     static std::unique_ptr<PluginLibrary> load(const std::filesystem::path &path);
+    // The same library in a process of its own (isolated_library.hpp).
+    static std::unique_ptr<PluginLibrary> load_isolated(const std::filesystem::path &path,
+                                                        const IsolationSettings &settings);
     ~PluginLibrary();
     PluginLibrary(const PluginLibrary &) = delete;
     PluginLibrary &operator=(const PluginLibrary &) = delete;
 
     const std::filesystem::path &path() const { return path_; }
+    // The library's entry; in-process libraries only (plugin-check).
     const arbor_plugin_entry &entry() const { return *entry_; }
+    bool isolated() const { return isolated_ != nullptr; }
+    // entry.create_plugin, in this process or through the isolated one.
+    arbor_status create_plugin(const arbor_host *host, const char *plugin_id, arbor_plugin **out) const;
     // Descriptors that passed the rules.
     const std::vector<const arbor_plugin_descriptor *> &descriptors() const { return accepted_; }
     // Plugins of this library refused for their descriptors.
@@ -47,6 +58,8 @@ public:
 
 private:
     PluginLibrary() = default;
+    // Applies the descriptor rules; `describe(i)` reads descriptor i.
+    void accept(uint32_t count, const std::function<const arbor_plugin_descriptor *(uint32_t)> &describe);
 
     std::filesystem::path path_;
     std::string name_; // the file's name, for crash reports
@@ -54,6 +67,7 @@ private:
     const arbor_plugin_entry *entry_ = nullptr;
     bool initialised_ = false;
     std::unique_ptr<HostIdentity> host_;
+    std::unique_ptr<IsolatedLibrary> isolated_;
     std::vector<const arbor_plugin_descriptor *> accepted_;
     std::vector<PluginRefusal> refusals_;
 };

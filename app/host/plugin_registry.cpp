@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cstdlib>
 #include <sstream>
+#include <stdexcept>
+
+#include <unistd.h>
 
 namespace arbor {
 
@@ -14,6 +17,49 @@ std::string plugin_short_name(std::string_view id)
 {
     const auto dot = id.rfind('.');
     return std::string(dot == std::string_view::npos ? id : id.substr(dot + 1));
+}
+
+const char *isolation_mode_name(IsolationMode mode)
+{
+    switch (mode) {
+    case IsolationMode::None: return "none";
+    case IsolationMode::ThirdParty: return "third-party";
+    case IsolationMode::All: return "all";
+    }
+    return "none";
+}
+
+IsolationMode parse_isolation_mode(std::string_view text)
+{
+    for (IsolationMode m : {IsolationMode::None, IsolationMode::ThirdParty, IsolationMode::All})
+        if (text == isolation_mode_name(m))
+            return m;
+    throw std::invalid_argument("isolation '" + std::string(text) + "': choose all, third-party or none");
+}
+
+IsolationPolicy default_isolation(const fs::path &executable, IsolationMode mode, double timeout_seconds)
+{
+    IsolationPolicy policy;
+    policy.mode = mode;
+    policy.settings.helper = executable.parent_path() / "arbor-plugin-host";
+    policy.settings.timeout_seconds = timeout_seconds;
+    // A plugin may use what the machine has, not more: a runaway allocation
+    // fails in the plugin's process instead of swapping the host out.
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+    policy.settings.memory_limit = pages > 0 && page > 0 ? static_cast<uint64_t>(pages) * static_cast<uint64_t>(page) : 0;
+    std::error_code ec;
+    policy.builtin_folder = fs::weakly_canonical(executable.parent_path().parent_path() / ARBOR_PLUGIN_SUBDIR, ec);
+    return policy;
+}
+
+bool PluginRegistry::isolates(const fs::path &path) const
+{
+    switch (isolation_.mode) {
+    case IsolationMode::None: return false;
+    case IsolationMode::All: return true;
+    case IsolationMode::ThirdParty: return path.parent_path() != isolation_.builtin_folder;
+    }
+    return false;
 }
 
 PluginRegistry::~PluginRegistry()
@@ -66,7 +112,8 @@ bool PluginRegistry::load_file(const fs::path &file)
             return true;
     std::unique_ptr<PluginLibrary> lib;
     try {
-        lib = PluginLibrary::load(canonical);
+        lib = isolates(canonical) ? PluginLibrary::load_isolated(canonical, isolation_.settings)
+                                  : PluginLibrary::load(canonical);
     } catch (const PluginRefused &e) {
         refusals_.push_back({file.string(), "", e.what()});
         log_message(ARBOR_LOG_WARNING, "", "plugin library " + file.string() + " refused: " + e.what());
@@ -133,7 +180,7 @@ PluginInstance PluginRegistry::create(std::string_view id) const
     arbor_status s;
     {
         const PluginCall in(caller, "entry.create_plugin");
-        s = info->library->entry().create_plugin(host->get(), info->descriptor->id, &plugin);
+        s = info->library->create_plugin(host->get(), info->descriptor->id, &plugin);
     }
     if (s != ARBOR_OK || !plugin)
         throw PluginError(s == ARBOR_OK ? ARBOR_ERROR_INTERNAL : s,

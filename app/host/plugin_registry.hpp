@@ -25,6 +25,28 @@ namespace arbor {
 // neither of them (and the full ids must be written).
 std::string plugin_short_name(std::string_view id);
 
+// Which libraries run in a process of their own (isolated_library.hpp).
+enum class IsolationMode {
+    None,       // every library in this process
+    ThirdParty, // all but those in the built-in folder (the default of `arbor`)
+    All,
+};
+// "none", "third-party", "all"; parse_isolation_mode throws
+// std::invalid_argument naming the choices.
+const char *isolation_mode_name(IsolationMode mode);
+IsolationMode parse_isolation_mode(std::string_view text);
+
+struct IsolationPolicy {
+    IsolationMode mode = IsolationMode::None;
+    IsolationSettings settings;          // the helper, the per-call timeout, the memory limit
+    std::filesystem::path builtin_folder; // ours: libraries here count as first-party
+};
+// The policy `arbor` and the workstation start with: `mode`, the helper
+// next to `executable`, a timeout of `timeout_seconds`, and a memory limit of
+// the machine's memory.
+IsolationPolicy default_isolation(const std::filesystem::path &executable, IsolationMode mode,
+                                  double timeout_seconds);
+
 struct PluginInfo {
     const arbor_plugin_descriptor *descriptor;
     const PluginLibrary *library;
@@ -41,6 +63,12 @@ public:
     // built-in folder.
     static std::vector<std::filesystem::path> default_search_path(
         const std::filesystem::path &executable);
+
+    // Applies to the libraries loaded after it.
+    void set_isolation(IsolationPolicy policy) { isolation_ = std::move(policy); }
+    const IsolationPolicy &isolation() const { return isolation_; }
+    // Whether a library at `path` (canonical) would run isolated.
+    bool isolates(const std::filesystem::path &path) const;
 
     // Loads every *.so in the folders (missing folders are skipped).
     void load_directories(const std::vector<std::filesystem::path> &folders);
@@ -63,6 +91,7 @@ private:
     std::vector<std::unique_ptr<PluginLibrary>> libraries_;
     std::vector<PluginInfo> plugins_;
     std::vector<PluginRefusal> refusals_;
+    IsolationPolicy isolation_;
 };
 
 } // namespace arbor

@@ -220,6 +220,12 @@ std::string session_text(const Document &d, const PluginCatalog &catalog, const 
     j["format"] = kSessionFormat;
     j["written_by"] = std::string("arbor ") + ARBOR_HOST_VERSION;
 
+    // How plugins ran: `arbor run --session` and `arbor view` start with the
+    // same isolation unless their command line says otherwise.
+    const IsolationPolicy &isolation = catalog.registry().isolation();
+    j["plugins"] = {{"isolate", isolation_mode_name(isolation.mode)},
+                    {"timeout_s", isolation.settings.timeout_seconds}};
+
     ordered input = ordered::object();
     if (d.input.phantom) {
         const PhantomInput &p = *d.input.phantom;
@@ -516,6 +522,23 @@ SessionRead read_session(const fs::path &path, const PluginCatalog &catalog, boo
     std::ostringstream text;
     text << in.rdbuf();
     return parse_session(text.str(), path.parent_path(), path.string(), catalog, require_input);
+}
+
+std::optional<SessionIsolation> session_isolation(const fs::path &path)
+{
+    std::ifstream in(path);
+    if (!in)
+        return std::nullopt;
+    const json j = json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.is_object() || !j.contains("plugins") || !j.at("plugins").is_object())
+        return std::nullopt;
+    const json &p = j.at("plugins");
+    SessionIsolation out;
+    if (p.contains("isolate") && p.at("isolate").is_string())
+        out.mode = p.at("isolate").get<std::string>();
+    if (p.contains("timeout_s") && p.at("timeout_s").is_number())
+        out.timeout_seconds = p.at("timeout_s").get<double>();
+    return out;
 }
 
 } // namespace arbor::pipeline

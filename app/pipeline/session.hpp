@@ -22,6 +22,7 @@
 
 #include <filesystem>
 #include <stdexcept>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,15 @@ public:
 
 // The session text of a resolved document; relative paths are made against
 // `folder` (the session file's).
+// The plugin isolation a session was saved with (its "plugins" object):
+// read before the plugins load, so that a session runs its plugins as it
+// did.  nullopt for a file without one (or not a session).
+struct SessionIsolation {
+    std::string mode;           // "all", "third-party", "none"; "" when absent
+    double timeout_seconds = 0; // 0 when absent
+};
+std::optional<SessionIsolation> session_isolation(const std::filesystem::path &path);
+
 std::string session_text(const Document &document, const PluginCatalog &catalog, const std::filesystem::path &folder);
 
 // Writes the session atomically (an existing file survives a failed write).
