@@ -42,8 +42,11 @@ void add_plugins_command(CLI::App &app, Context &context)
                                         {"version", d.version},
                                         {"vendor", d.vendor},
                                         {"description", d.description},
-                                        {"library", p.library->path().string()}});
+                                        {"library", p.library->path().string()},
+                                        {"isolated", p.library->isolated()}});
             }
+            j["isolation"] = {{"mode", isolation_mode_name(r.isolation().mode)},
+                              {"timeout_s", r.isolation().settings.timeout_seconds}};
             j["refused"] = nlohmann::json::array();
             for (const PluginRefusal &x : r.refusals())
                 j["refused"].push_back({{"library", x.path}, {"plugin", x.plugin_id}, {"reason", x.reason}});

@@ -144,12 +144,12 @@ class WrongCommandLines(unittest.TestCase):
 
 
 class PluginCrashes(unittest.TestCase):
-    """A crash inside a plugin names the plugin and the call; the process
-    still dies of the signal."""
+    """A crash inside a plugin running in-process (--isolate none) names the
+    plugin and the call; the process still dies of the signal."""
 
     def convert_with(self, folder, plugin):
-        return arbor("convert", NUCLEON, "-o", SCRATCH / "crash.nrrd", "--filter", plugin, env=path_of(folder),
-                     check=False)
+        return arbor("--isolate", "none", "convert", NUCLEON, "-o", SCRATCH / "crash.nrrd", "--filter", plugin,
+                     env=path_of(folder), check=False)
 
     def test_a_segfault(self):
         code, _, err = self.convert_with(FIXTURES, "crash")
@@ -165,6 +165,61 @@ class PluginCrashes(unittest.TestCase):
         code, _, err = self.convert_with(FIXTURES / "fixture-crash-thread", "crash-thread")
         self.assertEqual(code, -signal.SIGSEGV, err)
         self.assertIn("while plugin org.arbor.test.crash-thread was in filter.apply", err)
+
+
+class IsolatedPluginCrashes(unittest.TestCase):
+    """The same third-party plugins isolated (the default for libraries
+    outside Arbor's plugin folder): the command fails with exit status 1 and
+    a message naming the plugin and the call, never dies of the signal."""
+
+    def convert_with(self, folder, plugin, *flags):
+        return arbor(*flags, "convert", NUCLEON, "-o", SCRATCH / "crash.nrrd", "--filter", plugin,
+                     env=path_of(folder), check=False)
+
+    def test_a_segfault(self):
+        code, _, err = self.convert_with(FIXTURES, "crash")
+        self.assertEqual(code, 1, err)
+        self.assertIn("org.arbor.test.crash: ", err)
+        self.assertIn("crashed (SIGSEGV, a segmentation fault) in filter.apply; it runs isolated", err)
+
+    def test_an_abort(self):
+        code, _, err = self.convert_with(FIXTURES / "fixture-abort", "abort")
+        self.assertEqual(code, 1, err)
+        self.assertIn("crashed (SIGABRT, abort()) in filter.apply", err)
+
+    def test_a_hang_is_stopped_after_the_timeout(self):
+        code, _, err = self.convert_with(FIXTURES, "hang", "--plugin-timeout", "2")
+        self.assertEqual(code, 1, err)
+        self.assertIn("org.arbor.test.hang: ", err)
+        self.assertIn("did not answer for 2 s", err)
+        self.assertIn("in filter.output_type", err)
+
+    def test_a_bad_isolation_value_is_a_usage_error(self):
+        code, _, err = arbor("--isolate", "some", "plugins", check=False)
+        self.assertEqual(code, 2, err)
+        self.assertIn("choose all, third-party or none", err)
+        code, _, err = arbor("--plugin-timeout", "0", "plugins", check=False)
+        self.assertEqual(code, 2, err)
+
+    def test_a_session_keeps_its_isolation(self):
+        session = SCRATCH / "isolated-session.json"
+        arbor("--isolate", "all", "--plugin-timeout", "7", "run", "--phantom", "head", "--phantom-size", "48",
+              "-o", SCRATCH / "isolated.png", "--save-session", session)
+        saved = json.loads(session.read_text())
+        self.assertEqual(saved["plugins"], {"isolate": "all", "timeout_s": 7})
+        # Opened again without flags, it runs as it was saved.
+        again = SCRATCH / "isolated-session-again.json"
+        arbor("run", "--session", session, "-o", SCRATCH / "isolated-again.png", "--save-session", again)
+        self.assertEqual(json.loads(again.read_text())["plugins"], {"isolate": "all", "timeout_s": 7})
+        self.assertEqual((SCRATCH / "isolated.png").read_bytes(), (SCRATCH / "isolated-again.png").read_bytes())
+
+    def test_plugins_says_which_run_isolated(self):
+        _, out, _ = arbor("plugins", "--json", env=path_of(FIXTURES / "fixture-abort"))
+        listing = json.loads(out)
+        self.assertEqual(listing["isolation"]["mode"], "third-party")
+        by_id = {p["id"]: p for p in listing["plugins"]}
+        self.assertTrue(by_id["org.arbor.test.abort"]["isolated"])
+        self.assertFalse(by_id["org.arbor.simplifier.itri"]["isolated"])
 
 
 class PluginCheck(unittest.TestCase):
