@@ -25,10 +25,31 @@ struct IsolatedLibrary::OwnedDescriptor {
 };
 
 IsolatedLibrary::IsolatedLibrary(const std::filesystem::path &path, const IsolationSettings &settings)
-    : path_(path), name_(path.filename().string()), settings_(settings)
+    : IsolatedLibrary(path, settings, true)
 {
     std::lock_guard lock(mutex_);
     process_ = start();
+}
+
+IsolatedLibrary::IsolatedLibrary(const std::filesystem::path &path, const IsolationSettings &settings, bool)
+    : path_(path), name_(path.filename().string()), settings_(settings)
+{
+}
+
+std::unique_ptr<IsolatedLibrary> IsolatedLibrary::begin(const std::filesystem::path &path,
+                                                        const IsolationSettings &settings)
+{
+    std::unique_ptr<IsolatedLibrary> lib(new IsolatedLibrary(path, settings, true));
+    lib->pending_ = lib->start_process();
+    return lib;
+}
+
+void IsolatedLibrary::finish()
+{
+    std::lock_guard lock(mutex_);
+    const Started started = std::move(pending_);
+    pending_ = {};
+    process_ = finish_start(started);
 }
 
 IsolatedLibrary::~IsolatedLibrary()
@@ -37,22 +58,32 @@ IsolatedLibrary::~IsolatedLibrary()
     process_.reset();
 }
 
-// A new process with the library loaded; at the first start the library's
-// descriptors are read, at later ones checked to be the same plugins.
-std::shared_ptr<PluginProcess> IsolatedLibrary::start()
+// A new process asked to load the library.
+IsolatedLibrary::Started IsolatedLibrary::start_process()
 {
-    std::shared_ptr<PluginProcess> process;
+    Started started;
     try {
-        process = std::make_shared<PluginProcess>(settings_, name_);
+        started.process = std::make_shared<PluginProcess>(settings_, name_);
     } catch (const std::exception &e) {
         throw PluginRefused(std::string("cannot run isolated: ") + e.what());
     }
     ++starts_;
-    const std::lock_guard control(process->control_mutex);
-    MessageWriter w(process->window(0) + kRequestAt, kRequestBytes);
+    MessageWriter w(started.process->window(0) + kRequestAt, kRequestBytes);
     w.put_string(path_.c_str());
+    started.posted = started.process->post(0, Op::Load, w.size());
+    return started;
+}
+
+// The load's answer; at the first start the library's descriptors are read
+// (later starts load the same file).
+std::shared_ptr<PluginProcess> IsolatedLibrary::finish_start(const Started &started)
+{
+    const std::shared_ptr<PluginProcess> &process = started.process;
+    if (!process)
+        throw PluginRefused("was never started");
+    const std::lock_guard control(process->control_mutex);
     HostIdentity library_log(name_);
-    const std::string failure = process->call(0, Op::Load, w.size(), nullptr, library_log.get());
+    const std::string failure = process->wait(0, started.posted, nullptr, library_log.get());
     if (!failure.empty())
         throw PluginRefused(failure + " while loading (dlopen, entry.init)");
     try {

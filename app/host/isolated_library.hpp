@@ -36,6 +36,11 @@ public:
     // Starts the process and loads the library there; throws PluginRefused
     // with the reason (the child's dlopen error, a crash in its init...).
     IsolatedLibrary(const std::filesystem::path &path, const IsolationSettings &settings);
+    // The same in two halves, so that many libraries load at once: begin
+    // starts the process and asks it to load; finish waits for the answer
+    // (throws PluginRefused).  Nothing else may be called before finish.
+    static std::unique_ptr<IsolatedLibrary> begin(const std::filesystem::path &path, const IsolationSettings &settings);
+    void finish();
     ~IsolatedLibrary();
     IsolatedLibrary(const IsolatedLibrary &) = delete;
     IsolatedLibrary &operator=(const IsolatedLibrary &) = delete;
@@ -55,7 +60,15 @@ public:
 
 private:
     struct OwnedDescriptor;
-    std::shared_ptr<PluginProcess> start();
+    struct Started {
+        std::shared_ptr<PluginProcess> process;
+        uint32_t posted = 0;
+    };
+    IsolatedLibrary(const std::filesystem::path &path, const IsolationSettings &settings, bool);
+    Started start_process();                           // spawned, the load posted
+    std::shared_ptr<PluginProcess> finish_start(const Started &started); // the load's answer
+    std::shared_ptr<PluginProcess> start() { return finish_start(start_process()); }
+    Started pending_;
 
     std::filesystem::path path_;
     std::string name_;

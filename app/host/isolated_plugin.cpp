@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <optional>
 #include <utility>
 
@@ -59,7 +60,8 @@ struct Proxy {
     arbor_renderer_v1 renderer1{};
     arbor_renderer_v2 renderer2{};
     arbor_render_device_v1 device{};
-    std::string suffixes, device_name, header_unit, param_text;
+    std::string suffixes, device_name, header_unit;
+    std::map<std::string, std::string> param_texts; // get()'s text, by id: valid until that id's next get
     std::vector<std::unique_ptr<OwnedParamDesc>> descriptions;
     // The values the host set, in order, to set again after a restart.
     std::vector<std::pair<std::string, std::pair<arbor_param_value, std::string>>> values;
@@ -418,11 +420,12 @@ arbor_status c_param_get(const arbor_plugin *plugin, const char *id, arbor_param
         p, Op::ParamGet, nullptr, [&](MessageWriter &w, CallContext &) { w.put_string(id); },
         [&](MessageReader &r, const CheckedWindow &, arbor_status) {
             arbor_param_value v{};
-            get_param_value(r, v, p.param_text);
+            std::string &text = p.param_texts[id];
+            get_param_value(r, v, text);
             out->type = v.type;
             out->components = v.components;
             std::copy(std::begin(v.number), std::end(v.number), out->number);
-            out->text = v.text ? p.param_text.c_str() : nullptr;
+            out->text = v.text ? text.c_str() : nullptr;
         });
 }
 
@@ -740,9 +743,8 @@ void put_camera(MessageWriter &w, const arbor_camera &camera)
 }
 
 template <class Request>
-void put_scene(MessageWriter &w, CallContext &c, const Request &request, uint64_t tf_revision)
+void put_scene(MessageWriter &w, CallContext &c, const Request &request)
 {
-    (void)tf_revision;
     c.put_cached_volume(w, *request.volume, request.volume_revision);
     c.put_cached_labels(w, request.labels, request.labels_revision);
     put_tf_input(w, c.bulk(), *request.transfer_functions);
@@ -769,7 +771,7 @@ arbor_status c_render1(arbor_plugin *plugin, const arbor_render_request *request
     return run(
         p, Op::Render1, task,
         [&](MessageWriter &w, CallContext &c) {
-            put_scene(w, c, *request, 0);
+            put_scene(w, c, *request);
             placed = place_image(w, c.bulk(), *out);
         },
         [&](MessageReader &, const CheckedWindow &window, arbor_status status) {
@@ -789,7 +791,7 @@ arbor_status c_render2(arbor_plugin *plugin, const arbor_render_request_v2 *requ
     return run(
         p, Op::Render2, task,
         [&](MessageWriter &w, CallContext &c) {
-            put_scene(w, c, *request, request->transfer_functions_revision);
+            put_scene(w, c, *request);
             w.put(request->pass);
             w.put(request->transfer_functions_revision);
             for (uint32_t x : {request->frame_width, request->frame_height, request->region_x, request->region_y,

@@ -91,12 +91,18 @@ void PluginLibrary::accept(uint32_t count, const std::function<const arbor_plugi
 }
 
 std::unique_ptr<PluginLibrary> PluginLibrary::load_isolated(const std::filesystem::path &path,
-                                                            const IsolationSettings &settings)
+                                                            const IsolationSettings &settings,
+                                                            std::unique_ptr<IsolatedLibrary> started)
 {
     std::unique_ptr<PluginLibrary> lib(new PluginLibrary());
     lib->path_ = path;
     lib->name_ = path.filename().string();
-    lib->isolated_ = std::make_unique<IsolatedLibrary>(path, settings); // throws PluginRefused
+    if (started) {
+        started->finish(); // throws PluginRefused
+        lib->isolated_ = std::move(started);
+    } else {
+        lib->isolated_ = std::make_unique<IsolatedLibrary>(path, settings); // throws PluginRefused
+    }
     const auto &descriptors = lib->isolated_->descriptors();
     if (lib->isolated_->abi_version().minor > ARBOR_ABI_VERSION_MINOR)
         log_message(ARBOR_LOG_DEBUG, path.string(),

@@ -38,9 +38,11 @@ class PluginLibrary {
 public:
     // Throws PluginRefused with the reason.
     static std::unique_ptr<PluginLibrary> load(const std::filesystem::path &path);
-    // The same library in a process of its own (isolated_library.hpp).
+    // The same library in a process of its own (isolated_library.hpp);
+    // `started`: one IsolatedLibrary::begin started already.
     static std::unique_ptr<PluginLibrary> load_isolated(const std::filesystem::path &path,
-                                                        const IsolationSettings &settings);
+                                                        const IsolationSettings &settings,
+                                                        std::unique_ptr<IsolatedLibrary> started = nullptr);
     ~PluginLibrary();
     PluginLibrary(const PluginLibrary &) = delete;
     PluginLibrary &operator=(const PluginLibrary &) = delete;

@@ -33,6 +33,7 @@ const char *describe_signal(int signal)
     case SIGABRT: return "SIGABRT, abort()";
     case SIGKILL: return "SIGKILL; the system kills processes that use too much memory";
     case SIGTERM: return "SIGTERM";
+    case SIGINT: return "SIGINT";
     default: return "a signal";
     }
 }
@@ -42,7 +43,7 @@ const char *describe_signal(int signal)
 uint64_t window_size()
 {
     rlimit as{};
-    uint64_t budget = uint64_t{4} << 40; // 4 TiB of addresses
+    uint64_t budget = uint64_t{2} << 40; // 2 TiB of addresses: windows of 32 GiB
     if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY)
         budget = std::min<uint64_t>(budget, as.rlim_cur / 4);
     uint64_t w = budget / kMaxChannels;
@@ -81,19 +82,34 @@ PluginProcess::PluginProcess(const IsolationSettings &settings, const std::strin
     arena->window_bytes = window_bytes_;
     channels_[0] = true;
 
+    // The child's lifeline: it reads the other end and leaves when the host
+    // is gone (every write end closed).  Not PR_SET_PDEATHSIG, which fires
+    // when the spawning *thread* ends (a pipeline job restarting a plugin).
+    int lifeline[2];
+    if (pipe2(lifeline, O_CLOEXEC) != 0) {
+        const int e = errno;
+        munmap(arena_, arena_bytes_);
+        close(memfd_);
+        throw std::runtime_error(std::string("cannot create a pipe for an isolated plugin: ") + std::strerror(e));
+    }
+    lifeline_ = lifeline[1];
     const std::string helper = settings_.helper.string();
     const std::string bytes = std::to_string(arena_bytes_), limit = std::to_string(settings_.memory_limit);
     std::vector<char *> argv{const_cast<char *>(helper.c_str()), const_cast<char *>("--arena-fd"),
                              const_cast<char *>("3"),           const_cast<char *>("--arena-bytes"),
-                             const_cast<char *>(bytes.c_str()), const_cast<char *>("--memory-limit"),
+                             const_cast<char *>(bytes.c_str()), const_cast<char *>("--lifeline-fd"),
+                             const_cast<char *>("4"),           const_cast<char *>("--memory-limit"),
                              const_cast<char *>(limit.c_str()), const_cast<char *>("--library"),
                              const_cast<char *>(name_.c_str()), nullptr};
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_adddup2(&actions, memfd_, 3); // dup2 clears close-on-exec
+    posix_spawn_file_actions_adddup2(&actions, lifeline[0], 4);
     const int e = posix_spawn(&pid_, helper.c_str(), &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
+    close(lifeline[0]);
     if (e != 0) {
+        close(lifeline_);
         munmap(arena_, arena_bytes_);
         close(memfd_);
         throw std::runtime_error("cannot start " + helper + " for an isolated plugin: " + std::strerror(e));
@@ -119,6 +135,7 @@ PluginProcess::~PluginProcess()
     }
     munmap(arena_, arena_bytes_);
     close(memfd_);
+    close(lifeline_);
 }
 
 uint8_t *PluginProcess::window(uint32_t channel) const
@@ -227,16 +244,28 @@ std::string PluginProcess::call(uint32_t channel, Op op, uint64_t request_size, 
 {
     if (!alive())
         return death();
+    return wait(channel, post(channel, op, request_size), task, log);
+}
+
+uint32_t PluginProcess::post(uint32_t channel, Op op, uint64_t request_size)
+{
     ChannelHeader &h = header(channel);
-    auto &arena = *reinterpret_cast<ArenaHeader *>(arena_);
     h.op = static_cast<uint32_t>(op);
     h.request_size = request_size;
     h.reply_size = 0;
     h.cancel.store(0);
     const uint32_t before = h.reply.load(std::memory_order_acquire);
-    const uint32_t seq = before + 1;
-    h.request.store(seq, std::memory_order_release);
+    h.request.store(before + 1, std::memory_order_release);
     futex_wake(h.request);
+    return before;
+}
+
+std::string PluginProcess::wait(uint32_t channel, uint32_t before, arbor_task *task, const arbor_host *log)
+{
+    if (!alive())
+        return death();
+    ChannelHeader &h = header(channel);
+    auto &arena = *reinterpret_cast<ArenaHeader *>(arena_);
 
     using clock = std::chrono::steady_clock;
     auto last_life = clock::now();

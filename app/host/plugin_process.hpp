@@ -57,6 +57,11 @@ public:
     std::string call(uint32_t channel, isolation::Op op, uint64_t request_size, arbor_task *task,
                      const arbor_host *log);
 
+    // The two halves of call(): post returns what wait needs.  Several
+    // processes can work on posted requests at once (libraries loading).
+    uint32_t post(uint32_t channel, isolation::Op op, uint64_t request_size);
+    std::string wait(uint32_t channel, uint32_t posted, arbor_task *task, const arbor_host *log);
+
     bool alive() const { return !dead_.load(); }
     std::string death() const;
     int pid() const { return pid_; }
@@ -77,6 +82,7 @@ private:
     std::string name_;
     int pid_ = -1;
     int memfd_ = -1;
+    int lifeline_ = -1; // the write end of the child's lifeline pipe
     uint8_t *arena_ = nullptr;
     uint64_t arena_bytes_ = 0, window_bytes_ = 0;
     std::atomic<bool> dead_{false};

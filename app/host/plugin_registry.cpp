@@ -89,21 +89,37 @@ std::vector<fs::path> PluginRegistry::default_search_path(const fs::path &execut
 
 void PluginRegistry::load_directories(const std::vector<fs::path> &folders)
 {
+    std::vector<fs::path> files;
     for (const fs::path &dir : folders) {
         std::error_code ec;
         if (!fs::is_directory(dir, ec))
             continue;
-        std::vector<fs::path> files;
+        std::vector<fs::path> in_folder;
         for (const auto &e : fs::directory_iterator(dir, ec))
             if (e.path().extension() == ".so" && e.is_regular_file(ec))
-                files.push_back(e.path());
-        std::sort(files.begin(), files.end());
-        for (const fs::path &f : files)
-            load_file(f);
+                in_folder.push_back(e.path());
+        std::sort(in_folder.begin(), in_folder.end());
+        files.insert(files.end(), in_folder.begin(), in_folder.end());
     }
+    // Isolated libraries load in their processes at the same time; the
+    // results are taken in search-path order, as if loaded one by one.
+    std::vector<std::unique_ptr<IsolatedLibrary>> started(files.size());
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        std::error_code ec;
+        const fs::path canonical = fs::weakly_canonical(files[i], ec);
+        if (!isolates(canonical))
+            continue;
+        try {
+            started[i] = IsolatedLibrary::begin(canonical, isolation_.settings);
+        } catch (const PluginRefused &) {
+            // load_file tries again and records why
+        }
+    }
+    for (std::size_t i = 0; i < files.size(); ++i)
+        load_file(files[i], std::move(started[i]));
 }
 
-bool PluginRegistry::load_file(const fs::path &file)
+bool PluginRegistry::load_file(const fs::path &file, std::unique_ptr<IsolatedLibrary> started)
 {
     std::error_code ec;
     const fs::path canonical = fs::weakly_canonical(file, ec);
@@ -112,7 +128,7 @@ bool PluginRegistry::load_file(const fs::path &file)
             return true;
     std::unique_ptr<PluginLibrary> lib;
     try {
-        lib = isolates(canonical) ? PluginLibrary::load_isolated(canonical, isolation_.settings)
+        lib = isolates(canonical) ? PluginLibrary::load_isolated(canonical, isolation_.settings, std::move(started))
                                   : PluginLibrary::load(canonical);
     } catch (const PluginRefused &e) {
         refusals_.push_back({file.string(), "", e.what()});

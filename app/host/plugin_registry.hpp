@@ -9,6 +9,7 @@
 #pragma once
 
 #include "plugin_instance.hpp"
+#include "isolated_library.hpp"
 #include "plugin_library.hpp"
 
 #include <filesystem>
@@ -73,7 +74,9 @@ public:
     // Loads every *.so in the folders (missing folders are skipped).
     void load_directories(const std::vector<std::filesystem::path> &folders);
     // Loads one library; returns false (and records the refusal) if refused.
-    bool load_file(const std::filesystem::path &library);
+    // `started`: its isolated process, begun already (load_directories
+    // starts them all before it waits for any).
+    bool load_file(const std::filesystem::path &library, std::unique_ptr<IsolatedLibrary> started = nullptr);
 
     const std::vector<PluginRefusal> &refusals() const { return refusals_; }
     const std::vector<PluginInfo> &plugins() const { return plugins_; }

@@ -21,11 +21,12 @@ const char *const kInterfaceIds[9] = {ARBOR_INTERFACE_PARAMS,       ARBOR_INTERF
 
 constexpr uint32_t kOffered = 1u << 31;
 
-uint32_t bits(std::initializer_list<bool> present)
+// The mask of a table: offered, and bit i where its i-th function is there.
+template <class... Pointers>
+uint32_t bits(Pointers... present)
 {
     uint32_t m = kOffered, i = 0;
-    for (bool p : present)
-        m |= (p ? 1u : 0u) << i++;
+    ((m |= (present != nullptr ? 1u : 0u) << i++), ...);
     return m;
 }
 
@@ -102,6 +103,33 @@ struct Scene {
         volume_revision = r.get<uint64_t>();
         labels_revision = r.get<uint64_t>();
     }
+
+    // The fields renderer/1 and /2 requests share.
+    template <class Request>
+    void fill(Request &request) const
+    {
+        request.struct_size = sizeof request;
+        request.volume = &volume.volume;
+        request.labels = has_labels ? &labels : nullptr;
+        request.transfer_functions = &functions.set;
+        request.camera = &camera;
+        std::memcpy(request.background, background, sizeof request.background);
+        request.volume_revision = volume_revision;
+        request.labels_revision = labels_revision;
+    }
+};
+
+// A depictor's request: the selection and the tree.
+struct DepictionInput {
+    ChildTree tree;
+    arbor_depiction_request request{};
+    void read(MessageReader &r, const WindowView &view)
+    {
+        request.struct_size = sizeof request;
+        request.selected_branch = r.get<int32_t>();
+        get_tree(r, view, tree);
+        request.tree = &tree.tree;
+    }
 };
 
 } // namespace
@@ -151,16 +179,16 @@ void InstanceServer::describe(MessageWriter &w) const
     const auto *device = static_cast<const arbor_render_device_v1 *>(tables_[8]);
     const bool r2 = renderer2 && ARBOR_HAS_FIELD(arbor_renderer_v2, renderer2->struct_size, render);
     const bool d1 = device && ARBOR_HAS_FIELD(arbor_render_device_v1, device->struct_size, describe);
-    w.put<uint32_t>(params ? bits({params->count, params->describe, params->get, params->set}) : 0);
-    w.put<uint32_t>(importer ? bits({importer->suffixes, importer->probe, importer->read_header, importer->read_voxels})
+    w.put<uint32_t>(params ? bits(params->count, params->describe, params->get, params->set) : 0);
+    w.put<uint32_t>(importer ? bits(importer->suffixes, importer->probe, importer->read_header, importer->read_voxels)
                              : 0);
-    w.put<uint32_t>(filter ? bits({filter->output_type, filter->apply}) : 0);
-    w.put<uint32_t>(simplifier ? bits({simplifier->prepare, simplifier->importance}) : 0);
-    w.put<uint32_t>(depictor ? bits({depictor->depict, depictor->related, depictor->legend}) : 0);
-    w.put<uint32_t>(generator ? bits({generator->generate}) : 0);
-    w.put<uint32_t>(renderer1 ? bits({renderer1->render}) : 0);
-    w.put<uint32_t>(renderer2 ? bits({r2 && renderer2->render}) : 0);
-    w.put<uint32_t>(device ? bits({d1 && device->describe}) : 0);
+    w.put<uint32_t>(filter ? bits(filter->output_type, filter->apply) : 0);
+    w.put<uint32_t>(simplifier ? bits(simplifier->prepare, simplifier->importance) : 0);
+    w.put<uint32_t>(depictor ? bits(depictor->depict, depictor->related, depictor->legend) : 0);
+    w.put<uint32_t>(generator ? bits(generator->generate) : 0);
+    w.put<uint32_t>(renderer1 ? bits(renderer1->render) : 0);
+    w.put<uint32_t>(renderer2 ? bits(r2 ? renderer2->render : nullptr) : 0);
+    w.put<uint32_t>(device ? bits(d1 ? device->describe : nullptr) : 0);
     w.put_string(importer && importer->suffixes ? importer->suffixes : "", 4096);
     w.put<uint32_t>(renderer2 ? renderer2->struct_size : 0);
     w.put<uint32_t>(device ? device->struct_size : 0);
@@ -302,14 +330,10 @@ int32_t InstanceServer::handle(Op op, MessageReader &r, MessageWriter &w)
         return s;
     }
     case Op::Depict: {
-        arbor_depiction_request request{};
-        request.struct_size = sizeof request;
-        request.selected_branch = r.get<int32_t>();
-        ChildTree tree;
-        get_tree(r, view, tree);
-        request.tree = &tree.tree;
+        DepictionInput in;
+        in.read(r, view);
         arbor_depiction out = get_depiction(r, view);
-        return table<arbor_depictor_v1>(tables_, 4).depict(plugin_, &request, &out, task);
+        return table<arbor_depictor_v1>(tables_, 4).depict(plugin_, &in.request, &out, task);
     }
     case Op::Related: {
         ChildTree tree;
@@ -321,17 +345,13 @@ int32_t InstanceServer::handle(Op op, MessageReader &r, MessageWriter &w)
         return s;
     }
     case Op::Legend: {
-        arbor_depiction_request request{};
-        request.struct_size = sizeof request;
-        request.selected_branch = r.get<int32_t>();
-        ChildTree tree;
-        get_tree(r, view, tree);
-        request.tree = &tree.tree;
+        DepictionInput in;
+        in.read(r, view);
         arbor_image image = get_image(r, view);
         image.depth = nullptr;
         image.label_visibility = nullptr;
         image.label_visibility_count = 0;
-        return table<arbor_depictor_v1>(tables_, 4).legend(plugin_, &request, &image, task);
+        return table<arbor_depictor_v1>(tables_, 4).legend(plugin_, &in.request, &image, task);
     }
     case Op::Generate: {
         arbor_tf_request request{};
@@ -382,29 +402,14 @@ int32_t InstanceServer::handle(Op op, MessageReader &r, MessageWriter &w)
     case Op::Render2: {
         Scene scene;
         scene.read(r, view);
-        const arbor_label_map *labels = scene.has_labels ? &scene.labels : nullptr;
         if (op == Op::Render1) {
             arbor_render_request request{};
-            request.struct_size = sizeof request;
-            request.volume = &scene.volume.volume;
-            request.labels = labels;
-            request.transfer_functions = &scene.functions.set;
-            request.camera = &scene.camera;
-            std::memcpy(request.background, scene.background, sizeof request.background);
-            request.volume_revision = scene.volume_revision;
-            request.labels_revision = scene.labels_revision;
+            scene.fill(request);
             arbor_image image = get_image(r, view);
             return table<arbor_renderer_v1>(tables_, 6).render(plugin_, &request, &image, task);
         }
         arbor_render_request_v2 request{};
-        request.struct_size = sizeof request;
-        request.volume = &scene.volume.volume;
-        request.labels = labels;
-        request.transfer_functions = &scene.functions.set;
-        request.camera = &scene.camera;
-        std::memcpy(request.background, scene.background, sizeof request.background);
-        request.volume_revision = scene.volume_revision;
-        request.labels_revision = scene.labels_revision;
+        scene.fill(request);
         request.pass = r.get<arbor_render_pass>();
         request.transfer_functions_revision = r.get<uint64_t>();
         request.frame_width = r.get<uint32_t>();

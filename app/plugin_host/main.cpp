@@ -1,12 +1,14 @@
 // `arbor-plugin-host`: the process an isolated plugin library runs in.
 // Started by the host (host/plugin_process.cpp), never by people:
 //
-//   arbor-plugin-host --arena-fd 3 --arena-bytes N --memory-limit BYTES --library NAME
+//   arbor-plugin-host --arena-fd 3 --arena-bytes N --lifeline-fd 4 --memory-limit BYTES --library NAME
 //
 // It maps the arena the host shares, loads the library when asked on
 // channel 0 and serves it there ([main-thread] calls: init, descriptors,
 // create, deinit); each instance gets a thread on its own channel
-// (instance_server.hpp).  It dies with the host (PR_SET_PDEATHSIG), keeps
+// (instance_server.hpp).  It leaves when the host is gone (its lifeline
+// pipe reads end-of-file), ignores the terminal's Ctrl-C (the host turns it
+// into cancellation of the calls in progress), keeps
 // its data segment under the memory limit (a runaway allocation fails
 // here, not in the host), and announces a fatal signal in the arena before
 // it dies of it, so the host learns at once.
@@ -25,12 +27,14 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
 #include <memory>
 #include <string>
+#include <thread>
 
 using namespace arbor;
 using namespace arbor::isolation;
@@ -132,7 +136,7 @@ struct Instance {
 
 int main(int argc, char **argv)
 {
-    int fd = -1;
+    int fd = -1, lifeline = -1;
     uint64_t arena_bytes = 0, memory_limit = 0;
     std::string library_name = "?";
     for (int i = 1; i + 1 < argc; i += 2) {
@@ -141,6 +145,8 @@ int main(int argc, char **argv)
             fd = std::atoi(argv[i + 1]);
         else if (a == "--arena-bytes")
             arena_bytes = std::strtoull(argv[i + 1], nullptr, 10);
+        else if (a == "--lifeline-fd")
+            lifeline = std::atoi(argv[i + 1]);
         else if (a == "--memory-limit")
             memory_limit = std::strtoull(argv[i + 1], nullptr, 10);
         else if (a == "--library")
@@ -150,9 +156,15 @@ int main(int argc, char **argv)
         std::fprintf(stderr, "arbor-plugin-host: started by Arbor to run an isolated plugin; not for direct use\n");
         return 2;
     }
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (getppid() == 1)
-        return 3; // the host is gone already
+    if (lifeline >= 0)
+        std::thread([lifeline] {
+            char byte;
+            while (read(lifeline, &byte, 1) != 0 && errno == EINTR) {
+            }
+            _exit(0); // end of file: the host is gone
+        }).detach();
+    signal(SIGINT, SIG_IGN);
+    signal(SIGQUIT, SIG_IGN);
     prctl(PR_SET_NAME, "arbor-plugin", 0, 0, 0);
     rlimit no_core{0, 0};
     setrlimit(RLIMIT_CORE, &no_core);

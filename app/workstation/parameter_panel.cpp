@@ -129,7 +129,11 @@ bool ParameterPanel::plugin_controls(Workstation &ws, const char *kind, const ch
                 what = std::string(label) + " " + pipeline::short_name(setting.id);
             }
             if (ImGui::IsItemHovered() && p->descriptor->description)
-                ImGui::SetTooltip("%s", p->descriptor->description);
+                ImGui::SetTooltip("%s%s", p->descriptor->description,
+                                  p->library->isolated()
+                                      ? "\n\nRuns isolated in a process of its own: if it crashes or hangs, the "
+                                        "call fails, the session carries on, and the plugin restarts at its next call."
+                                      : "");
         }
         ImGui::EndCombo();
     }

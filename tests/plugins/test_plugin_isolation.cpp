@@ -2,14 +2,20 @@
 // give the same results as in-process, and a crash, abort, hang or runaway
 // allocation fails the call with a message naming the plugin and the call,
 // while this process carries on and the plugin comes back at its next call.
+#include "global_ramp.hpp"
 #include "plugin_fixture.hpp"
 #include "topology_oracles.hpp"
 
+#include "host/branch_tree_record.hpp"
 #include "host/filter_run.hpp"
+#include "host/rendering.hpp"
+#include "host/tf_generation.hpp"
+#include "host/volume_import.hpp"
 #include "host/param_text.hpp"
 #include "host/simplifier_importance.hpp"
 #include "io/phantom.hpp"
 #include "topology/branch_decomposition.hpp"
+#include "topology/simplification.hpp"
 #include "topology/topology_pipeline.hpp"
 
 #include <gtest/gtest.h>
@@ -18,6 +24,8 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 
 namespace arbor {
 namespace {
@@ -29,15 +37,15 @@ fs::path helper()
     return fs::read_symlink("/proc/self/exe").parent_path() / "arbor-plugin-host";
 }
 
-// Every library of `folder` isolated: a timeout of 2 s, a memory limit of 1 GiB.
-std::unique_ptr<PluginRegistry> isolated(const fs::path &folder)
+// Every library of `folder` isolated: a timeout of 2 s and a memory limit.
+std::unique_ptr<PluginRegistry> isolated(const fs::path &folder, uint64_t memory_limit = uint64_t{1} << 30)
 {
     auto r = std::make_unique<PluginRegistry>();
     IsolationPolicy policy;
     policy.mode = IsolationMode::All;
     policy.settings.helper = helper();
     policy.settings.timeout_seconds = 2;
-    policy.settings.memory_limit = uint64_t{1} << 30;
+    policy.settings.memory_limit = memory_limit;
     r->set_isolation(policy);
     r->load_directories({folder});
     return r;
@@ -45,7 +53,9 @@ std::unique_ptr<PluginRegistry> isolated(const fs::path &folder)
 
 PluginRegistry &faulty()
 {
-    static const auto r = isolated(fs::path(ARBOR_FIXTURE_PLUGIN_DIR) / "fixture-faulty");
+    // 256 MiB: the runaway allocation reaches it in a few 64 MiB steps, well
+    // before the timeout, on a loaded machine too.
+    static const auto r = isolated(fs::path(ARBOR_FIXTURE_PLUGIN_DIR) / "fixture-faulty", uint64_t{256} << 20);
     return *r;
 }
 
@@ -69,7 +79,7 @@ Volume filtered(PluginInstance &filter) { return run_filter(filter, small_phanto
 
 TEST(PluginIsolation, TheLibraryLoadsInAProcessOfItsOwn)
 {
-    ASSERT_EQ(faulty().plugins().size(), 2u) << (faulty().refusals().empty() ? "" : faulty().refusals()[0].reason);
+    ASSERT_EQ(faulty().plugins().size(), 6u) << (faulty().refusals().empty() ? "" : faulty().refusals()[0].reason);
     for (const PluginInfo &p : faulty().plugins())
         EXPECT_TRUE(p.library->isolated());
     PluginInstance f = faulty().create("org.arbor.test.faulty-filter");
@@ -140,6 +150,148 @@ TEST(PluginIsolation, ASimplifierThatCrashesOrReturnsNanIsNamed)
     set(s, "fault", "none");
     const topology::BranchDecomposition again = topology::decompose_branches(topo.tree, field, simplifier_importance(s));
     EXPECT_EQ(again.branches.size(), good.branches.size());
+}
+
+// A small simplified tree of the phantom, for depictors and generators.
+struct TreeScene {
+    topology::TopologyResult topo;
+    topology::BranchDecomposition decomposition;
+    topology::SimplificationCut cut;
+    std::unique_ptr<BranchTreeRecord> tree;
+    TreeScene()
+    {
+        const Volume &v = small_phantom();
+        topo = topology::compute_contour_tree(v);
+        const topology::FieldView field{v.type(), v.data(), static_cast<uint32_t>(v.voxel_count()), &v.geometry()};
+        PluginInstance itri = test::built_plugins().create("org.arbor.simplifier.itri");
+        decomposition = topology::decompose_branches(topo.tree, field, simplifier_importance(itri));
+        cut = topology::cut_by_count(decomposition, 4);
+        tree = std::make_unique<BranchTreeRecord>(topo.tree, decomposition, cut, v);
+    }
+};
+
+// The calls of one kind, in the order of its interface.
+struct KindCalls {
+    const char *id;
+    std::vector<const char *> calls;
+    std::function<void(PluginInstance &)> run;
+};
+
+std::vector<KindCalls> every_kind(const TreeScene &scene, const fs::path &file)
+{
+    const arbor_branch_tree &tree = scene.tree->record();
+    return {
+        {"org.arbor.test.faulty-importer",
+         {"importer.probe", "importer.read_header", "importer.read_voxels"},
+         [file](PluginInstance &p) {
+             const auto &t = p.interface<arbor_importer_v1>(ARBOR_INTERFACE_IMPORTER);
+             int32_t confidence = 0;
+             p.check(p.call("importer.probe", t.probe, file.c_str(), nullptr, uint64_t{0}, &confidence),
+                     "probing");
+             EXPECT_EQ(confidence, 100);
+             const Volume v = import_volume(p, file, nullptr, uint64_t{1} << 30);
+             EXPECT_EQ(v.value(7 + 8 * (7 + 8 * 7)), 21.0);
+         }},
+        {"org.arbor.test.faulty-depictor",
+         {"depictor.depict", "depictor.related", "depictor.legend"},
+         [&tree](PluginInstance &p) {
+             arbor_depiction_request request{sizeof(arbor_depiction_request), 0, &tree};
+             DepictionRecord record(tree.branch_count);
+             depict(p, request, record);
+             const auto &t = p.interface<arbor_depictor_v1>(ARBOR_INTERFACE_DEPICTOR);
+             arbor_bool32 related = 0;
+             p.check(p.call("depictor.related", t.related, &tree, 1u, 0u, &related), "relating");
+             std::vector<float> pixels(32 * 32 * 4, 0.0f);
+             arbor_image image{};
+             image.struct_size = sizeof image;
+             image.width = image.height = 32;
+             image.row_stride = 4 * 32;
+             image.rgba = pixels.data();
+             Task task;
+             p.check(p.call("depictor.legend", t.legend, &request, &image, task.get()), "drawing");
+             EXPECT_EQ(pixels[4 * 32 * 32 - 1], 0.5f);
+         }},
+        {"org.arbor.test.faulty-tf-generator",
+         {"tf_generator.generate"},
+         [&tree](PluginInstance &p) {
+             const arbor_volume view = small_phantom().view();
+             DepictionRecord depiction(tree.branch_count);
+             arbor_tf_request request{};
+             request.struct_size = sizeof request;
+             request.tree = &tree;
+             request.depiction = &depiction.record();
+             request.volume = &view;
+             request.value_range[0] = tree.saddle_value[0];
+             request.value_range[1] = tree.extremum_value[0];
+             request.min_spacing = 1;
+             TransferFunctions out(tree.branch_count, 64, 1.0);
+             generate_transfer_functions(p, request, out);
+             EXPECT_EQ(out.lut(0)[4 * 63 + 3], 1.0f);
+         }},
+        {"org.arbor.test.faulty-renderer",
+         {"renderer.render"},
+         [](PluginInstance &p) {
+             const Volume &v = small_phantom();
+             const arbor_volume view = v.view();
+             TransferFunctions tf(1, 16, 1.0);
+             test::global_ramp(tf, 0, 255);
+             const arbor_camera camera = orbit_camera(v.geometry(), Orbit{});
+             const arbor_render_request request = test::global_request(view, tf, camera);
+             const RenderedImage image = render_image(p, request, 24, 16);
+             EXPECT_EQ(image.rgba[2], 0.6f);
+         }},
+    };
+}
+
+// A segfault in every call of every other kind: named, survived, and the
+// plugin works again at its next call.
+TEST(PluginIsolation, ASegfaultInAnyCallOfAnyKindIsNamedAndSurvived)
+{
+    const TreeScene scene;
+    const fs::path file = fs::temp_directory_path() / ("arbor-isolation-" + std::to_string(getpid()) + ".faulty");
+    std::ofstream(file) << "any content\n";
+    for (const KindCalls &kind : every_kind(scene, file)) {
+        PluginInstance p = faulty().create(kind.id);
+        set(p, "fault", "none");
+        kind.run(p);
+        for (std::size_t c = 0; c < kind.calls.size(); ++c) {
+            SCOPED_TRACE(std::string(kind.id) + " " + kind.calls[c]);
+            set(p, "fault", "segfault");
+            set(p, "call", c == 0 ? "first" : c == 1 ? "second" : "third");
+            try {
+                kind.run(p);
+                ADD_FAILURE() << "no error";
+            } catch (const PluginError &e) {
+                const std::string m = e.what();
+                EXPECT_NE(m.find(kind.id), std::string::npos) << m;
+                EXPECT_NE(m.find(std::string("crashed (SIGSEGV, a segmentation fault) in ") + kind.calls[c]),
+                          std::string::npos)
+                    << m;
+            }
+            set(p, "fault", "none");
+            kind.run(p);
+        }
+    }
+    fs::remove(file);
+}
+
+// Garbage from an isolated plugin meets the host's checks as from any other.
+TEST(PluginIsolation, GarbageOutputsAreRefusedNamingThePlugin)
+{
+    const TreeScene scene;
+    for (const KindCalls &kind : every_kind(scene, "unused.faulty")) {
+        if (std::string(kind.id).find("generator") == std::string::npos &&
+            std::string(kind.id).find("renderer") == std::string::npos)
+            continue;
+        PluginInstance p = faulty().create(kind.id);
+        set(p, "fault", "nan");
+        try {
+            kind.run(p);
+            ADD_FAILURE() << kind.id << ": NaN accepted";
+        } catch (const std::exception &e) {
+            EXPECT_NE(std::string(e.what()).find(kind.id), std::string::npos) << e.what();
+        }
+    }
 }
 
 // Arbor's own plugins isolated give what they give in-process: a filter, a
