@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <thread>
 
 namespace arbor {
 namespace {
@@ -127,6 +128,20 @@ TEST(PluginIsolation, ACrashAbortHangOrRunawayAllocationFailsTheCallAndThePlugin
         const Volume out = filtered(f);
         EXPECT_EQ(std::memcmp(out.data(), small_phantom().data(), out.byte_size()), 0);
     }
+}
+
+// The pipeline's jobs run on threads that end; a plugin restarted on one
+// must outlive it (a child tied to the thread that spawned it would die).
+TEST(PluginIsolation, APluginRestartedOnAThreadThatEndsLivesOn)
+{
+    PluginInstance f = faulty().create("org.arbor.test.faulty-filter");
+    set(f, "fault", "segfault");
+    set(f, "call", "second");
+    EXPECT_THROW(filtered(f), PluginError);
+    std::thread([&] { set(f, "fault", "none"); }).join(); // the restart, on a job's thread
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    const Volume out = filtered(f);
+    EXPECT_EQ(std::memcmp(out.data(), small_phantom().data(), out.byte_size()), 0);
 }
 
 TEST(PluginIsolation, ASimplifierThatCrashesOrReturnsNanIsNamed)
