@@ -37,6 +37,7 @@ uint64_t ProgressiveView::touch()
     std::lock_guard lock(mutex_);
     last_touch_ = std::chrono::steady_clock::now();
     rendering_.request_stop(); // the pass in flight answers an older touch
+    error_.clear();            // a new attempt: the last one's failure is no longer the news
     const uint64_t n = ++touches_;
     changed_.notify_all();
     return n;

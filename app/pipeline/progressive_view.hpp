@@ -62,7 +62,8 @@ public:
     // timeout.
     std::shared_ptr<const Frame> wait_for(uint64_t touch, arbor_render_pass pass, uint32_t samples,
                                           std::chrono::milliseconds timeout) const;
-    // What went wrong in the last attempt ("" when nothing).
+    // What went wrong in the last attempt ("" when nothing, and from each
+    // touch until its attempt fails).
     std::string error() const;
 
 private:

@@ -22,7 +22,7 @@ const std::map<std::string, std::pair<std::size_t, std::size_t>> &commands()
         {"branch-opacity", {2, 2}}, {"reset-styles", {0, 0}},          {"undo", {0, 0}},        {"redo", {0, 0}},
         {"screenshot", {1, 1}},    {"screenshot-window", {1, 1}}, {"save-session", {1, 1}},
         {"export-labels", {1, 1}}, {"export-tf", {1, 1}},   {"quit", {0, 0}},
-        {"pacs-search", {1, 5}},   {"pacs-open", {1, 1}},
+        {"pacs-search", {1, 5}},   {"pacs-open", {1, 1}},    {"expect-error", {1, 1}},
     };
     return table;
 }
@@ -104,7 +104,23 @@ bool ScriptRunner::step(Workstation &ws, ScriptWindow &window)
         return false;
     const ScriptLine &line = lines_[next_];
     try {
-        if (line.command == "wait") {
+        if (line.command == "expect-error") {
+            // A test's step: the work must fail saying this.  The failure
+            // comes when the job the last change started ends, so wait for
+            // it rather than for idleness (which may come first).
+            const auto now = std::chrono::steady_clock::now();
+            if (!waiting_since_)
+                waiting_since_ = now;
+            const std::string error = ws.error();
+            if (error.find(line.args[0]) == std::string::npos) {
+                if (!error.empty() && ws.idle())
+                    throw std::runtime_error("expected an error saying '" + line.args[0] + "', got '" + error + "'");
+                if (std::chrono::duration<double>(now - *waiting_since_).count() > 600)
+                    throw std::runtime_error("expected an error saying '" + line.args[0] + "', got none in 600 s");
+                return true;
+            }
+            waiting_since_.reset();
+        } else if (line.command == "wait") {
             const double limit = line.args.size() > 1 ? number(line.args[1], "wait idle") : 600.0;
             const auto now = std::chrono::steady_clock::now();
             if (!waiting_since_)

@@ -4,6 +4,8 @@
 //
 //   open PATH                  a volume, DICOM folder or session
 //   wait idle [SECONDS]        until every job is done and the 3D view current (default 600 s)
+//   expect-error TEXT          until the work fails with a message containing TEXT
+//                              (one word; for tests of failures; at most 600 s)
 //   set NAME VALUE             any control (controls.hpp): set flow-rate 150, set keep 12
 //   select LABEL | none        the selection every view shares
 //   drag-threshold FRACTION    the priority line's threshold at that height

@@ -14,12 +14,12 @@ import unittest
 import numpy
 from PIL import Image
 
-from test_cli import ARBOR, DATA, SCRATCH, arbor
+from test_cli import ARBOR, DATA, FIXTURES, SCRATCH, arbor
 
 CT = DATA / "dicom_ct_head_0051"
 
 
-def view(*args, script=None, check=True):
+def view(*args, script=None, check=True, plugin_path=None):
     """Runs `arbor view` in its own 24-bit X server; (status, stdout, stderr)."""
     cmd = ["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24", ARBOR, "view", *map(str, args)]
     if script is not None:
@@ -27,6 +27,8 @@ def view(*args, script=None, check=True):
         path.write_text(script)
         cmd += ["--script", str(path)]
     env = dict(os.environ, HOME=str(SCRATCH / "home"), ARBOR_STATE_DIR=str(SCRATCH / "state"))
+    if plugin_path is not None:
+        env["ARBOR_PLUGIN_PATH"] = str(plugin_path)
     p = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=900)
     if check and p.returncode != 0:
         raise AssertionError(f"arbor view failed ({p.returncode}):\n{p.stderr}")
@@ -136,6 +138,35 @@ quit
         status, _, err = view("--phantom", "head", script="wait idle 300\nset flowrate 3\nquit\n", check=False)
         self.assertNotEqual(status, 0)
         self.assertIn(":2: set: no control named 'flowrate'", err)
+
+
+@unittest.skipUnless(shutil.which("xvfb-run"), "needs xvfb-run")
+class CrashingPlugin(unittest.TestCase):
+    """A third-party filter that segfaults inside the workstation: it runs
+    isolated, so the job fails with the plugin and the call named, the
+    window and the session carry on, and taking the filter away brings the
+    same picture back."""
+
+    def test_the_session_carries_on(self):
+        o = SCRATCH / "workstation-crash"
+        o.mkdir(parents=True, exist_ok=True)
+        status, _, err = view("--phantom", "head", "--no-recovery", plugin_path=FIXTURES / "fixture-faulty", script=f"""\
+wait idle 300
+screenshot {o}/before.png
+set filter faulty-filter:fault=segfault,call=second
+expect-error SIGSEGV
+expect-error org.arbor.test.faulty-filter
+expect-error filter.apply
+screenshot-window {o}/during.png
+set filter none
+wait idle 300
+screenshot {o}/after.png
+save-session {o}/session.json
+quit
+""")
+        self.assertEqual(status, 0, err)  # every expect-error step saw its word in the window's error
+        self.assertLess(differs(o / "before.png", o / "after.png"), 0.5)
+        self.assertTrue((o / "session.json").is_file())
 
 
 if __name__ == "__main__":
