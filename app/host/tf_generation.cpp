@@ -94,6 +94,10 @@ void depict(PluginInstance &depictor, const arbor_depiction_request &request, De
     depictor.check(depictor.call("depictor.depict", table.depict, &request, &out.record(), task.get()), "depicting the branches");
     const arbor_depiction &d = out.record();
     for (uint32_t b = 0; b < d.branch_count; ++b) {
+        // Generators index tables by role: an unknown one must not reach them.
+        if (d.role[b] > ARBOR_ROLE_DESCENDANT)
+            throw PluginError(ARBOR_ERROR_OUT_OF_RANGE, depictor.id() + " returned role " + std::to_string(d.role[b]) +
+                                                            " (no such role) for branch " + std::to_string(b));
         const float v[] = {d.opacity_at_saddle[b], d.opacity_at_extremum[b], d.saturation[b]};
         for (float x : v)
             if (!(x >= 0.0f && x <= 1.0f))
