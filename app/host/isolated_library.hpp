@@ -55,8 +55,6 @@ public:
 
     // The running process: the current one, or a new one when it died.
     std::shared_ptr<PluginProcess> process();
-    const std::string &name() const { return name_; }
-    const IsolationSettings &settings() const { return settings_; }
 
 private:
     struct OwnedDescriptor;

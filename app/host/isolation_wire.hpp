@@ -75,10 +75,10 @@ struct ArenaHeader {
     uint32_t magic;
     uint32_t channels;
     uint64_t window_bytes;
-    // The child's fatal signal, written by its handler: the host learns of a
-    // crash at once instead of at its next poll.
+    // The child's fatal signal, written by its handler before it wakes every
+    // waiting host thread: the host learns of a crash at once instead of at
+    // its next poll.
     std::atomic<int32_t> crash_signal;
-    std::atomic<uint32_t> crash_wake; // futex word, bumped with crash_signal
 };
 constexpr uint32_t kArenaMagic = 0x41524231; // "ARB1"
 

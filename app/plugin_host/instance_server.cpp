@@ -144,7 +144,7 @@ std::string check_instance_record(const arbor_plugin *plugin)
     return "";
 }
 
-InstanceServer::InstanceServer(arbor_plugin *plugin, ChannelHeader *header, uint8_t *window, const ChannelLog *)
+InstanceServer::InstanceServer(arbor_plugin *plugin, ChannelHeader *header, uint8_t *window)
     : plugin_(plugin), header_(header), window_(window), task_(header, window)
 {
     for (int i = 0; i < 9; ++i)

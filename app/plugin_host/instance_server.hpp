@@ -18,7 +18,7 @@ namespace arbor::plugin_host {
 
 class InstanceServer {
 public:
-    InstanceServer(arbor_plugin *plugin, isolation::ChannelHeader *header, uint8_t *window, const ChannelLog *log);
+    InstanceServer(arbor_plugin *plugin, isolation::ChannelHeader *header, uint8_t *window);
     ~InstanceServer(); // stops the thread, destroys the instance
     InstanceServer(const InstanceServer &) = delete;
     InstanceServer &operator=(const InstanceServer &) = delete;
@@ -40,7 +40,8 @@ private:
     std::thread thread_;
 };
 
-// Creates instance `id` with `log` as its host; "" or why not.
+// What is wrong with the instance record create_plugin returned; "" when
+// the host may use it.
 std::string check_instance_record(const arbor_plugin *plugin);
 
 } // namespace arbor::plugin_host

@@ -53,7 +53,6 @@ void on_fatal_signal(int signal)
 {
     auto &arena = *reinterpret_cast<ArenaHeader *>(g_arena);
     arena.crash_signal.store(signal);
-    arena.crash_wake.fetch_add(1);
     for (uint32_t c = 0; c < kMaxChannels; ++c)
         futex_wake(header(c).reply);
     ::signal(signal, SIG_DFL);
@@ -221,8 +220,7 @@ int main(int argc, char **argv)
                     status = ARBOR_ERROR_INTERNAL; // a malformed record: leak it rather than crash
                     break;
                 }
-                instance.server = std::make_unique<InstanceServer>(plugin, &header(channel), window(channel),
-                                                                   instance.log.get());
+                instance.server = std::make_unique<InstanceServer>(plugin, &header(channel), window(channel));
                 try {
                     instance.server->describe(out);
                 } catch (const std::exception &e) {
