@@ -15,7 +15,6 @@
 #include "plugin_fixture.hpp"
 #include "process_run.hpp"
 
-#include "core/volume_statistics.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -88,16 +87,8 @@ int main(int argc, char **argv)
     const auto isolated = isolated_plugins();
     for (const char *path : {"ct_chest_lidc2/LIDC2.mha", "mr_brain_tumor_pyradiomics/brain1_image.nrrd"}) try {
         const Volume v = test::import(test::shared_data(path));
-        const VolumeStatistics stats = compute_statistics(v);
-        const arbor_volume view = v.view();
-        const auto &sp = v.geometry().spacing;
-        TransferFunctions tf(1, 256, 2.0 * std::min({sp[0], sp[1], sp[2]}));
-        test::global_ramp(tf, stats.min, stats.max);
-        Orbit orbit;
-        orbit.azimuth = 30;
-        orbit.elevation = 20;
-        const arbor_camera camera = orbit_camera(v.geometry(), orbit);
-        const arbor_render_request r = test::global_request(view, tf, camera);
+        const test::RampScene scene(v);
+        const arbor_render_request &r = scene.request;
         double first[2], steady[2];
         for (int iso = 0; iso < 2; ++iso) {
             PluginInstance renderer = (iso ? *isolated : test::built_plugins()).create("org.arbor.renderer.cpu-raycast");

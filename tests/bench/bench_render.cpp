@@ -7,7 +7,6 @@
 #include "global_ramp.hpp"
 #include "plugin_fixture.hpp"
 
-#include "core/volume_statistics.hpp"
 #include "host/rendering.hpp"
 #include "host/tf_generation.hpp"
 
@@ -48,16 +47,8 @@ int main()
                 "arbor sh", "vtk sh", "ratio");
     for (const char *path : volumes) try {
         const Volume v = test::import(test::shared_data(path));
-        const VolumeStatistics stats = compute_statistics(v);
-        const arbor_volume view = v.view();
-        TransferFunctions tf(1, 256, 4.0 * std::min({v.geometry().spacing[0], v.geometry().spacing[1],
-                                                    v.geometry().spacing[2]}));
-        test::global_ramp(tf, stats.min, stats.max);
-        Orbit orbit;
-        orbit.azimuth = 30;
-        orbit.elevation = 20;
-        const arbor_camera camera = orbit_camera(v.geometry(), orbit);
-        const arbor_render_request r = test::global_request(view, tf, camera);
+        const test::RampScene scene(v);
+        const arbor_render_request &r = scene.request;
         double fps[2][2];
         for (int shading = 0; shading < 2; ++shading) {
             PluginInstance cpu = test::built_plugins().create("org.arbor.renderer.cpu-raycast");

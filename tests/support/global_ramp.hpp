@@ -4,6 +4,7 @@
 // shading switched on or off on both renderers alike.
 #pragma once
 
+#include "core/volume_statistics.hpp"
 #include "host/param_text.hpp"
 #include "host/rendering.hpp"
 #include "host/tf_generation.hpp"
@@ -38,6 +39,30 @@ inline arbor_render_request global_request(const arbor_volume &volume, const Tra
     r.volume_revision = 1;
     return r;
 }
+
+// The renderer benchmarks' scene of a volume: the global ramp over its value
+// range (opacity unit distance 4 voxels), seen from azimuth 30, elevation 20.
+struct RampScene {
+    explicit RampScene(const Volume &v)
+        : view(v.view()),
+          tf(1, 256, 4.0 * std::min({v.geometry().spacing[0], v.geometry().spacing[1], v.geometry().spacing[2]}))
+    {
+        const VolumeStatistics stats = compute_statistics(v);
+        global_ramp(tf, stats.min, stats.max);
+        Orbit orbit;
+        orbit.azimuth = 30;
+        orbit.elevation = 20;
+        camera = orbit_camera(v.geometry(), orbit);
+        request = global_request(view, tf, camera);
+    }
+    RampScene(const RampScene &) = delete;
+    RampScene &operator=(const RampScene &) = delete;
+
+    arbor_volume view;
+    TransferFunctions tf;
+    arbor_camera camera{};
+    arbor_render_request request{}; // points at the members above
+};
 
 inline void set_shading(PluginInstance &renderer, bool on)
 {
