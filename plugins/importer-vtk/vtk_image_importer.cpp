@@ -23,6 +23,7 @@
 #include <cctype>
 #include <cmath>
 #include <string_view>
+#include <vector>
 
 namespace arbor::importer_vtk {
 
@@ -60,6 +61,43 @@ constexpr int32_t kSuffixConfidence = 30;
 // CELL_DATA. Such blocks are refused before VTK reads them.
 constexpr std::size_t kLegacyHeaderBytes = 64 * 1024;
 
+// The whitespace-separated words of `head` from `at`, lower-cased, at most `count`.
+std::vector<std::string> words_from(const std::string &head, std::size_t at, std::size_t count)
+{
+    std::vector<std::string> words;
+    while (words.size() < count) {
+        const std::size_t start = head.find_first_not_of(" \t\r\n", at);
+        if (start == std::string::npos)
+            break;
+        const std::size_t end = std::min(head.find_first_of(" \t\r\n", start), head.size());
+        std::string word = head.substr(start, end - start);
+        for (char &c : word)
+            c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        words.push_back(word);
+        at = end;
+    }
+    return words;
+}
+
+// Point data given as a FIELD: VTK 9.1 reads every array of it, strings
+// too, and a fuzzed binary string array with a garbage length kept it
+// copying for minutes.  Arbor reads one numeric array, so a point-data FIELD
+// must hold exactly one, of a numeric type named exactly.
+void refuse_odd_point_field(const std::string &head, std::size_t after_point_data, const std::string &name)
+{
+    // POINT_DATA n, then FIELD name count, then: array components tuples type
+    const std::vector<std::string> w = words_from(head, after_point_data, 8);
+    if (w.size() < 2 || w[1].compare(0, 5, "field") != 0)
+        return;
+    static const std::vector<std::string> numeric = {"bit",   "unsigned_char", "char",  "unsigned_short",
+                                                     "short", "unsigned_int",  "int",   "unsigned_long",
+                                                     "long",  "float",         "double", "vtkidtype"};
+    if (w.size() < 8 || w[3] != "1" || std::find(numeric.begin(), numeric.end(), w[7]) == numeric.end())
+        sdk::fail(ARBOR_ERROR_UNSUPPORTED,
+                  name + ": point data given as a FIELD must hold one array of a numeric type (unsigned_char, "
+                         "short, float...); this one does not");
+}
+
 void refuse_legacy_dataset_field(const std::string &path, const std::string &name)
 {
     const std::string head = read_file_start(path, kLegacyHeaderBytes);
@@ -74,8 +112,10 @@ void refuse_legacy_dataset_field(const std::string &path, const std::string &nam
         std::string word = head.substr(start, end - start);
         for (char &c : word)
             c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        if (word.rfind("point_data", 0) == 0 || word.rfind("cell_data", 0) == 0)
+        if (word.rfind("point_data", 0) == 0 || word.rfind("cell_data", 0) == 0) {
+            refuse_odd_point_field(head, end, name);
             return;
+        }
         const std::size_t letters = word.find_first_not_of("0123456789+-.e");
         if (letters != std::string::npos && word.compare(letters, 5, "field") == 0)
             sdk::fail(ARBOR_ERROR_UNSUPPORTED,
