@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -169,9 +170,17 @@ void LabelGrid::clear()
 
 void downsample(const VoxelGrid &g, VoxelGrid &half, const sdk::Task &task)
 {
-    half.nx = (g.nx + 1) / 2;
-    half.ny = (g.ny + 1) / 2;
-    half.nz = (g.nz + 1) / 2;
+    // Per axis: 2 where its spacing is less than half again the finest.
+    std::array<int64_t, 3> f{};
+    std::array<double, 3> spacing{};
+    for (int c = 0; c < 3; ++c)
+        spacing[c] = std::hypot(g.to_world[c], g.to_world[3 + c], g.to_world[6 + c]);
+    const double finest = *std::min_element(spacing.begin(), spacing.end());
+    for (int c = 0; c < 3; ++c)
+        f[c] = spacing[c] < 1.5 * finest ? 2 : 1;
+    half.nx = (g.nx + f[0] - 1) / f[0];
+    half.ny = (g.ny + f[1] - 1) / f[1];
+    half.nz = (g.nz + f[2] - 1) / f[2];
     const std::size_t n = static_cast<std::size_t>(half.nx * half.ny * half.nz);
     half.value.assign(n, 0.0f);
     if (g.label.empty())
@@ -184,24 +193,26 @@ void downsample(const VoxelGrid &g, VoxelGrid &half, const sdk::Task &task)
             for (int64_t i = 0; i < half.nx; ++i) {
                 float sum = 0;
                 int count = 0;
-                for (int64_t c = 2 * k; c <= std::min(2 * k + 1, g.nz - 1); ++c)
-                    for (int64_t b = 2 * j; b <= std::min(2 * j + 1, g.ny - 1); ++b)
-                        for (int64_t a = 2 * i; a <= std::min(2 * i + 1, g.nx - 1); ++a, ++count)
+                for (int64_t c = f[2] * k; c <= std::min(f[2] * k + f[2] - 1, g.nz - 1); ++c)
+                    for (int64_t b = f[1] * j; b <= std::min(f[1] * j + f[1] - 1, g.ny - 1); ++b)
+                        for (int64_t a = f[0] * i; a <= std::min(f[0] * i + f[0] - 1, g.nx - 1); ++a, ++count)
                             sum += g.value[g.index(a, b, c)];
                 const std::size_t at = half.index(i, j, k);
                 half.value[at] = sum / static_cast<float>(count);
                 if (!g.label.empty())
-                    half.label.set(at, g.label[g.index(2 * i, 2 * j, 2 * k)]);
+                    half.label.set(at, g.label[g.index(f[0] * i, f[1] * j, f[2] * k)]);
             }
     });
-    // Each half voxel sits at the centre of the 2 x 2 x 2 block it averages.
+    // Each half voxel sits at the centre of the block it averages.
     for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c)
-            half.to_world[3 * r + c] = 2.0 * g.to_world[3 * r + c];
-        half.origin[r] = g.origin[r] + 0.5 * (g.to_world[3 * r] + g.to_world[3 * r + 1] + g.to_world[3 * r + 2]);
+        half.origin[r] = g.origin[r];
+        for (int c = 0; c < 3; ++c) {
+            half.to_world[3 * r + c] = static_cast<double>(f[c]) * g.to_world[3 * r + c];
+            half.origin[r] += 0.5 * static_cast<double>(f[c] - 1) * g.to_world[3 * r + c];
+        }
     }
     half.to_voxel = inverse(half.to_world);
-    half.min_spacing = 2.0 * g.min_spacing;
+    half.min_spacing = std::min({f[0] * spacing[0], f[1] * spacing[1], f[2] * spacing[2]});
     compute_normals(half, task);
 }
 

@@ -73,7 +73,10 @@ struct VoxelGrid {
 };
 
 // The grid at half resolution for the coarse pass: values averaged over
-// 2 x 2 x 2 voxels, the label of the first, normals and gradients of its own.
+// blocks of 2 voxels along every axis whose spacing is less than half again
+// the finest (2 x 2 x 2 on an isotropic grid; 2 x 2 x 1 on a CT of 0.5 mm
+// pixels and 1.5 mm slices, whose slices averaged in pairs would blur 3 mm),
+// the label of the first, normals and gradients of its own.
 void downsample(const VoxelGrid &g, VoxelGrid &half, const sdk::Task &task);
 
 class VoxelGridCache {

@@ -103,11 +103,11 @@ public:
 
     void render_region(const arbor_render_request_v2 &request, arbor_image &out, const sdk::Task &task) override
     {
-        const VoxelGrid &g = prepare(request, task);
+        const bool coarse = request.pass == ARBOR_RENDER_PASS_COARSE;
+        const VoxelGrid &g = prepare(request, coarse, task);
         const Shading shading = Shading::from(params());
         Pass pass;
-        const bool coarse = request.pass == ARBOR_RENDER_PASS_COARSE;
-        const bool half = coarse && !half_.value.empty();
+        const bool half = coarse && half_ready_;
         pass.grid = half ? &half_ : &g;
         pass.occupancy = half ? &half_occupancy_ : &occupancy_;
         pass.occlusion = half ? 0.0f : shading_occlusion_;
@@ -174,8 +174,10 @@ private:
 
     // Brings every derived structure up to date with the request: the grid
     // (volume, labels), the block statistics, then what the transfer
-    // functions decide (tables, empty blocks, boundary emphasis, occlusion).
-    const VoxelGrid &prepare(const arbor_render_request_v2 &request, const sdk::Task &task)
+    // functions decide (tables, empty blocks, boundary emphasis, occlusion);
+    // for a coarse pass on a large volume the half-resolution grid, built
+    // at the first one (a batch render never needs it).
+    const VoxelGrid &prepare(const arbor_render_request_v2 &request, bool coarse, const sdk::Task &task)
     {
         const VoxelGrid &g =
             grid_.update(*request.volume, request.volume_revision, request.labels, request.labels_revision, task);
@@ -186,13 +188,8 @@ private:
             blocks_generation_ = ~uint64_t{0};
             blocks_.build(g, task);
             boundaries_.sample(g);
-            // Large volumes get a half-resolution copy for the coarse pass:
-            // an eighth of the memory its rays wander through.
+            half_ready_ = false;
             half_ = VoxelGrid{};
-            if (g.nx * g.ny * g.nz >= kHalfFrom) {
-                downsample(g, half_, task);
-                half_blocks_.build(half_, task);
-            }
             blocks_generation_ = grid_.generation();
         }
         const double step = params().number("sample-distance") * g.min_spacing;
@@ -207,13 +204,21 @@ private:
             table_.build(tf, step);
             coarse_table_.build(tf, step * kCoarseStep);
             occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz});
-            if (!half_.value.empty())
+            if (half_ready_)
                 half_occupancy_.build(half_blocks_, coarse_table_, {half_.nx, half_.ny, half_.nz});
             boundaries_.build(table_, emphasis);
             occlusion_.clear();
             table_print_ = print;
             step_ = step;
             emphasis_ = emphasis;
+        }
+        // Large volumes get a half-resolution copy for the coarse pass: a
+        // quarter to an eighth of the memory its rays wander through.
+        if (coarse && !half_ready_ && g.nx * g.ny * g.nz >= kHalfFrom) {
+            downsample(g, half_, task);
+            half_blocks_.build(half_, task);
+            half_occupancy_.build(half_blocks_, coarse_table_, {half_.nx, half_.ny, half_.nz});
+            half_ready_ = true;
         }
         const float occlusion = static_cast<float>(params().number("ambient-occlusion"));
         if (occlusion > 0 && !occlusion_.built())
@@ -428,7 +433,8 @@ private:
     VoxelGridCache grid_;
     BlockStatistics blocks_;
     uint64_t blocks_generation_ = ~uint64_t{0};
-    VoxelGrid half_; // empty below kHalfFrom voxels
+    VoxelGrid half_; // built at the first coarse pass on kHalfFrom voxels or more
+    bool half_ready_ = false;
     BlockStatistics half_blocks_;
     ClassTable table_, coarse_table_;
     Occupancy occupancy_, half_occupancy_;

@@ -441,6 +441,48 @@ TEST(CpuRayCaster2, OnALargeVolumeTheCoarsePassSamplesHalfResolutionAndStaysClos
     EXPECT_EQ(tiled.rgba, coarse.rgba);
 }
 
+TEST(CpuRayCaster2, OnAnAnisotropicVolumeTheCoarsePassKeepsItsSlices)
+{
+    // A CT's grid, 0.5 mm pixels and 1.5 mm slices, above the size from which
+    // the coarse pass rays a half-resolution copy: a plate one slice thick
+    // every fourth slice.  Averaged in pairs of slices (3 mm) the plates
+    // would fall under the transfer function's step (45 < 50) and vanish
+    // from the coarse pass; halved in-plane only, they stay.
+    constexpr int64_t nx = 320, nz = 48;
+    Geometry g;
+    g.dims = {nx, nx, nz};
+    g.spacing = {0.5, 0.5, 1.5};
+    Volume v = Volume::allocate(ARBOR_VOXEL_F32, g, {}, uint64_t{1} << 30);
+    std::vector<uint32_t> labels(static_cast<std::size_t>(nx * nx * nz), 0u);
+    const double c = (nx - 1) / 2.0;
+    for (int64_t k = 0; k < nz; ++k)
+        for (int64_t j = 0; j < nx; ++j)
+            for (int64_t i = 0; i < nx; ++i)
+                v.as<float>()[static_cast<std::size_t>(i + nx * (j + nx * k))] =
+                    k % 4 == 1 && std::hypot(i - c, j - c) < 120 ? 90.0f : 0.0f;
+    Interactive s;
+    s.view = v.view();
+    s.map.dims[0] = s.map.dims[1] = nx;
+    s.map.dims[2] = nz;
+    s.map.labels = labels.data();
+    const double centre[3] = {c * 0.5, c * 0.5, (nz - 1) / 2.0 * 1.5};
+    for (int a = 0; a < 3; ++a) {
+        s.scene.camera.focal_point[a] = centre[a];
+        s.scene.camera.position[a] = centre[a] + (a == 0 ? 90 : a == 1 ? -140 : 110);
+    }
+    const RenderedImage full = s.render({}, 256, 256);
+    const RenderedImage coarse = s.render({ARBOR_RENDER_PASS_COARSE}, 256, 256);
+    const auto opacity = [](const RenderedImage &image) {
+        double sum = 0;
+        for (std::size_t p = 3; p < image.rgba.size(); p += 4)
+            sum += image.rgba[p];
+        return sum;
+    };
+    ASSERT_GT(opacity(full), 0.1 * 256 * 256) << "the plates are not in the full image";
+    EXPECT_NEAR(opacity(coarse), opacity(full), 0.1 * opacity(full));
+    EXPECT_GT(test::psnr(coarse, full), 24.0);
+}
+
 TEST(CpuRayCaster2, TheCoarsePassChoosesItsRaysFromTheFrameRate)
 {
     Interactive s;
