@@ -6,6 +6,7 @@ the session reopens to the same picture (in the workstation and in
 `arbor run --session`), and no frame took over 100 ms while the contour
 tree was computed.  Run by ctest like test_cli.py.
 """
+import json
 import os
 import shutil
 import subprocess
@@ -167,6 +168,40 @@ quit
         self.assertEqual(status, 0, err)  # every expect-error step saw its word in the window's error
         self.assertLess(differs(o / "before.png", o / "after.png"), 0.5)
         self.assertTrue((o / "session.json").is_file())
+
+
+@unittest.skipUnless(shutil.which("xvfb-run"), "needs xvfb-run")
+class OpenGlIn3dView(unittest.TestCase):
+    """The OpenGL ray caster drawing the 3D view (what `auto` takes on
+    graphics hardware; here Mesa's llvmpipe): chosen from the renderer
+    control, its frames replace the CPU ray caster's and agree with them,
+    and the session remembers it."""
+
+    def test_the_opengl_ray_caster_draws_the_3d_view(self):
+        o = SCRATCH / "workstation-gl"
+        o.mkdir(parents=True, exist_ok=True)
+        status, _, err = view("--phantom", "head", "--no-recovery", script=f"""\
+wait idle 300
+screenshot {o}/cpu.png
+set renderer gl-raycast
+wait idle 300
+screenshot {o}/gl.png
+orbit 90 30
+wait idle 300
+screenshot {o}/gl-orbit.png
+save-session {o}/session.json
+quit
+""")
+        self.assertEqual(status, 0, err)
+        cpu, gl = pixels(o / "cpu.png"), pixels(o / "gl.png")
+        self.assertGreater(cpu.mean(), 5, "the CPU ray caster's 3D view is empty")
+        # Another renderer drew it (its bytes differ) ...
+        self.assertFalse(numpy.array_equal(cpu, gl), "the picture did not change with the renderer")
+        # ... to the same picture (the two agree to 72-90 dB offscreen).
+        self.assertLess(differs(o / "cpu.png", o / "gl.png"), 0.5)
+        self.assertGreater(differs(o / "gl.png", o / "gl-orbit.png"), 2, "the OpenGL 3D view does not orbit")
+        session = json.loads((o / "session.json").read_text())
+        self.assertEqual(session["view"]["renderer"]["id"], "org.arbor.renderer.gl-raycast")
 
 
 if __name__ == "__main__":
