@@ -16,22 +16,23 @@ namespace arbor::workstation {
 using pipeline::Stage;
 
 
-void PriorityLineView::build_rows(Workstation &ws, const pipeline::CutResult &cut)
+double PriorityLineView::value(const Row &row, uint32_t branch) const
 {
-    const topology::BranchDecomposition &d = cut.decomposition->branches;
+    const topology::BranchDecomposition &d = rows_of_->branches;
+    if (row.measure >= 0)
+        return d.relative(branch, row.measure);
+    const double importance = d.branches[branch].importance;
+    return std::isfinite(importance) ? importance : 0.0;
+}
+
+void PriorityLineView::build_rows(Workstation &ws, const pipeline::DecompositionResult &decomposition,
+                                  std::size_t count)
+{
+    const topology::BranchDecomposition &d = decomposition.branches;
     const std::size_t n = d.branches.size();
-    const std::string current = pipeline::short_name(cut.decomposition->simplifier.id);
-    std::vector<Row> &rows = rows_;
-    rows.clear();
-    {
-        Row r{current, std::vector<double>(n, 0), true};
-        for (std::size_t b = 1; b < n; ++b)
-            r.values[b] = std::isfinite(d.branches[b].importance) ? d.branches[b].importance : 0;
-        r.top = *std::max_element(r.values.begin(), r.values.end());
-        if (!(r.top > 0))
-            r.top = 1;
-        rows.push_back(std::move(r));
-    }
+    const std::string current = pipeline::short_name(decomposition.simplifier.id);
+    rows_.clear();
+    rows_.push_back(Row{current, -1, true});
     const std::pair<const char *, int> measures[] = {
         {"persistence", topology::kPersistence}, {"volume", topology::kVolume}, {"hypervolume", topology::kHypervolume}};
     for (const auto &[name, m] : measures) {
@@ -42,20 +43,27 @@ void PriorityLineView::build_rows(Workstation &ws, const pipeline::CutResult &cu
         } catch (const std::exception &) {
             continue; // not installed
         }
-        Row r{name, std::vector<double>(n, 0), false};
-        for (std::size_t b = 1; b < n; ++b)
-            r.values[b] = d.relative(static_cast<uint32_t>(b), m);
-        r.top = *std::max_element(r.values.begin(), r.values.end());
-        if (!(r.top > 0))
-            r.top = 1;
-        rows.push_back(std::move(r));
+        rows_.push_back(Row{name, m, false});
     }
-    // The current simplifier's order, most important first (the root left out).
-    std::vector<uint32_t> &order = order_;
-    order.assign(n > 0 ? n - 1 : 0, 0);
-    std::iota(order.begin(), order.end(), 1u);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](uint32_t a, uint32_t b) { return rows[0].values[a] > rows[0].values[b]; });
+    for (Row &row : rows_) {
+        row.top = 0;
+        for (uint32_t b = 1; b < n; ++b)
+            row.top = std::max(row.top, value(row, b));
+        if (!(row.top > 0))
+            row.top = 1;
+    }
+    // The current simplifier's order, most important first (the root left
+    // out; equal importances by branch index), as far as `count`.
+    const auto before = [&](uint32_t a, uint32_t b) {
+        const double va = value(rows_[0], a), vb = value(rows_[0], b);
+        return va > vb || (va == vb && a < b);
+    };
+    order_.resize(n > 0 ? n - 1 : 0);
+    std::iota(order_.begin(), order_.end(), 1u);
+    count = std::min(count, order_.size());
+    std::nth_element(order_.begin(), order_.begin() + static_cast<std::ptrdiff_t>(count), order_.end(), before);
+    order_.resize(count);
+    std::sort(order_.begin(), order_.end(), before);
 }
 
 void PriorityLineView::draw(Workstation &ws)
@@ -65,23 +73,31 @@ void PriorityLineView::draw(Workstation &ws)
         ImGui::TextDisabled(ws.has_input() ? "the contour tree is being computed" : "no volume");
         return;
     }
-    if (cut != rows_of_) {
-        build_rows(ws, *cut);
-        rows_of_ = cut;
+    const std::size_t n = cut->decomposition->branches.branches.size();
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    // The most important branches, at least three pixels a line: the kept
+    // ones and as many again (a noisy scan's long tail of tiny branches
+    // would be a flat line of pixels).
+    const std::size_t wanted = std::min(n > 0 ? n - 1 : 0, std::max<std::size_t>({3 * cut->kept(), 64,
+                                                                                  static_cast<std::size_t>(avail.x / 3)}));
+    if (cut->decomposition != rows_of_ || order_.size() < wanted) {
+        rows_of_ = cut->decomposition;
+        build_rows(ws, *cut->decomposition, std::max<std::size_t>(2 * wanted, 4096));
     }
     const std::vector<Row> &rows = rows_;
     const std::vector<uint32_t> &order = order_;
-    const std::size_t n = cut->decomposition->branches.branches.size();
     const auto &kept_index = cut->cut.kept_index;
     const auto &colors = ws.colors();
-    const ImVec2 avail = ImGui::GetContentRegionAvail();
     const float row_h = std::max(40.0f, (avail.y - 30) / static_cast<float>(rows.size()));
     ImDrawList *dl = ImGui::GetWindowDrawList();
     // Lowest importance kept: where the current row's threshold line is.
     double lowest_kept = 0;
-    for (uint32_t b : order)
-        if (kept_index[b] >= 0)
-            lowest_kept = rows[0].values[b];
+    bool any_kept = false;
+    for (const uint32_t b : cut->cut.kept)
+        if (b != 0) {
+            lowest_kept = any_kept ? std::min(lowest_kept, value(rows[0], b)) : value(rows[0], b);
+            any_kept = true;
+        }
     for (const Row &row : rows) {
         const double top = row.top;
         const ImVec2 lo = ImGui::GetCursorScreenPos();
@@ -93,17 +109,13 @@ void PriorityLineView::draw(Workstation &ws)
         dl->AddRectFilled(lo, {lo.x + size.x, lo.y + size.y}, IM_COL32(25, 25, 30, 255));
         const float plot_h = size.y - 16;
         const float base = lo.y + size.y - 2;
-        // The most important branches, at least three pixels a line: the
-        // kept ones and as many again (a noisy scan's long tail of tiny
-        // branches would be a flat line of pixels).
-        const std::size_t shown = std::min(order.size(), std::max<std::size_t>(
-                                                              {3 * cut->kept(), 64, static_cast<std::size_t>(size.x / 3)}));
+        const std::size_t shown = std::min(order.size(), wanted);
         const float px_per = shown > 0 ? size.x / static_cast<float>(shown) : 1;
         int last_px = -1;
         float tallest = 0;
         for (std::size_t i = 0; i < shown; ++i) {
             const uint32_t b = order[i];
-            const float h = static_cast<float>(row.values[b] / top) * plot_h;
+            const float h = static_cast<float>(value(row, b) / top) * plot_h;
             const int px = static_cast<int>(static_cast<float>(i) * px_per);
             if (px == last_px && h <= tallest)
                 continue;

@@ -25,17 +25,24 @@ public:
 
 private:
     struct Row {
-        std::string simplifier;     // short plugin name
-        std::vector<double> values; // per branch of the decomposition
+        std::string simplifier; // short plugin name
+        int measure = -1;       // topology::kPersistence...: that measure relative to the root; -1: the importance
         bool current = false;
-        double top = 1;             // the largest value: the row's full height
+        double top = 1;         // the largest value: the row's full height
     };
-    void build_rows(Workstation &ws, const pipeline::CutResult &cut);
+    double value(const Row &row, uint32_t branch) const;
+    // The rows and the `count` most important branches, in order.  Nothing
+    // per branch is kept but that order: a noisy scan's decomposition has
+    // hundreds of thousands of branches, and arrays of them made on the UI
+    // thread cost it a frame in page faults alone.
+    void build_rows(Workstation &ws, const pipeline::DecompositionResult &decomposition, std::size_t count);
 
-    // The cut they were made for (a new cut: made again).
-    std::shared_ptr<const pipeline::CutResult> rows_of_;
+    // The decomposition they were made for: a new decomposition (a new tree,
+    // another simplifier) makes them again, a new cut of the same one (a
+    // dragged threshold) does not.
+    std::shared_ptr<const pipeline::DecompositionResult> rows_of_;
     std::vector<Row> rows_;
-    std::vector<uint32_t> order_; // the current simplifier's, most important first
+    std::vector<uint32_t> order_; // the current simplifier's most important branches, most important first
     std::string dragging_; // the row's simplifier while its threshold is dragged
 };
 

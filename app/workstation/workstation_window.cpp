@@ -434,6 +434,7 @@ void Window::layout()
     if (ImGui::Begin("Jobs", nullptr, fixed))
         jobs_.draw(ws_);
     ImGui::End();
+    phase("panels");
     // Centre: the 3D view over the three slice views.
     const float view_h = h * 0.64f;
     place(left_w, top, centre_w, view_h);
@@ -446,6 +447,7 @@ void Window::layout()
         volume_.draw(ws_);
     ImGui::End();
     ImGui::PopStyleVar();
+    phase("3d");
     for (int i = 0; i < 3; ++i) {
         place(left_w + centre_w * i / 3.0f, top + view_h, centre_w / 3.0f, h - view_h);
         if (ImGui::Begin(orientation_name(slices_[i].orientation()), nullptr,
@@ -454,20 +456,24 @@ void Window::layout()
             slices_[i].draw(ws_);
         ImGui::End();
     }
+    phase("slices");
     // Right: tree, priority lines, branches.
     const float rx = left_w + centre_w;
     place(rx, top, right_w, h * 0.30f);
     if (ImGui::Begin("Tree", nullptr, fixed | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoBackground))
         tree_.draw(ws_);
     ImGui::End();
+    phase("tree");
     place(rx, top + h * 0.30f, right_w, h * 0.32f);
     if (ImGui::Begin("Priority lines", nullptr, fixed | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoBackground))
         priority_.draw(ws_);
     ImGui::End();
+    phase("priority");
     place(rx, top + h * 0.62f, right_w, h * 0.38f);
     if (ImGui::Begin("Branches", nullptr, fixed))
         branches_.draw(ws_);
     ImGui::End();
+    phase("branches");
 }
 
 void Window::frame()
@@ -507,8 +513,8 @@ void Window::frame()
             ws_.view().help = !ws_.view().help;
     }
     menu();
+    phase("menu");
     layout();
-    phase("views");
     dialogs();
     dicom_.draw(ws_);
     help();
