@@ -22,7 +22,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace arbor::importer_vtk {
@@ -61,19 +63,29 @@ constexpr int32_t kSuffixConfidence = 30;
 // CELL_DATA. Such blocks are refused before VTK reads them.
 constexpr std::size_t kLegacyHeaderBytes = 64 * 1024;
 
-// The whitespace-separated words of `head` from `at`, lower-cased, at most `count`.
+// The next whitespace-separated word of `head` from `at`, lower-cased, and
+// where it ends; an empty word and npos when none is left.
+std::pair<std::string, std::size_t> next_word(const std::string &head, std::size_t at)
+{
+    const std::size_t start = head.find_first_not_of(" \t\r\n", at);
+    if (start == std::string::npos)
+        return {std::string(), std::string::npos};
+    const std::size_t end = std::min(head.find_first_of(" \t\r\n", start), head.size());
+    std::string word = head.substr(start, end - start);
+    for (char &c : word)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return {word, end};
+}
+
+// The words of `head` from `at`, at most `count`.
 std::vector<std::string> words_from(const std::string &head, std::size_t at, std::size_t count)
 {
     std::vector<std::string> words;
     while (words.size() < count) {
-        const std::size_t start = head.find_first_not_of(" \t\r\n", at);
-        if (start == std::string::npos)
+        auto [word, end] = next_word(head, at);
+        if (end == std::string::npos)
             break;
-        const std::size_t end = std::min(head.find_first_of(" \t\r\n", start), head.size());
-        std::string word = head.substr(start, end - start);
-        for (char &c : word)
-            c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        words.push_back(word);
+        words.push_back(std::move(word));
         at = end;
     }
     return words;
@@ -105,13 +117,9 @@ void refuse_legacy_dataset_field(const std::string &path, const std::string &nam
     for (int line = 0; line < 2 && at != std::string::npos; ++line) // "# vtk DataFile ...", the title
         at = head.find('\n', at) == std::string::npos ? std::string::npos : head.find('\n', at) + 1;
     while (at != std::string::npos && at < head.size()) {
-        const std::size_t start = head.find_first_not_of(" \t\r\n", at);
-        if (start == std::string::npos)
+        const auto [word, end] = next_word(head, at);
+        if (end == std::string::npos)
             break;
-        const std::size_t end = std::min(head.find_first_of(" \t\r\n", start), head.size());
-        std::string word = head.substr(start, end - start);
-        for (char &c : word)
-            c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         if (word.rfind("point_data", 0) == 0 || word.rfind("cell_data", 0) == 0) {
             refuse_odd_point_field(head, end, name);
             return;
