@@ -32,10 +32,7 @@ void slice_image(const Volume &volume, const SliceGeometry &s, int64_t slice, co
         const auto ijk = s.voxel(x, y, slice);
         return ijk[0] + dims[0] * (ijk[1] + dims[1] * ijk[2]);
     };
-    // grey = clamp((physical - (level - width / 2)) / width), physical = stored * scale + offset
-    const double w = window.width > 0 ? window.width : 1;
-    const double a = volume.mapping().scale / w,
-                 b = (volume.mapping().offset - (window.level - window.width / 2)) / w;
+    const ValueMapping &mapping = volume.mapping();
     dispatch_voxel_type(volume.type(), [&](auto type) {
         using T = decltype(type);
         const T *voxels = volume.as<T>();
@@ -44,7 +41,7 @@ void slice_image(const Volume &volume, const SliceGeometry &s, int64_t slice, co
             uint8_t *p = &out.rgba[static_cast<std::size_t>(y * s.width * 4)];
             for (int64_t x = 0; x < s.width; ++x, p += 4) {
                 const int64_t v = first + x * stride;
-                const double g = std::clamp(a * static_cast<double>(voxels[v]) + b, 0.0, 1.0);
+                const double g = window.grey(mapping.physical(static_cast<double>(voxels[v])));
                 std::array<double, 3> c{g, g, g};
                 if (labelled) {
                     const uint32_t l = (*overlay.labels)[static_cast<std::size_t>(v)];
