@@ -13,35 +13,55 @@ GlTexture::~GlTexture()
         glDeleteTextures(1, &id_);
 }
 
-void GlTexture::upload(const uint8_t *rgba, int64_t width, int64_t height, bool smooth)
+void GlTexture::allocate(const uint8_t *rgba, int64_t width, int64_t height, bool smooth)
 {
-    if (width <= 0 || height <= 0)
-        return;
     if (!id_)
         glGenTextures(1, &id_);
     glBindTexture(GL_TEXTURE_2D, id_);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    if (width != width_ || height != height_ || smooth != smooth_) {
-        const GLint filter = smooth ? GL_LINEAR : GL_NEAREST;
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, static_cast<GLsizei>(width), static_cast<GLsizei>(height), 0, GL_RGBA,
-                     GL_UNSIGNED_BYTE, rgba);
-        width_ = width;
-        height_ = height;
-        smooth_ = smooth;
-    } else {
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, static_cast<GLsizei>(width), static_cast<GLsizei>(height), GL_RGBA,
-                        GL_UNSIGNED_BYTE, rgba);
-    }
+    const GLint filter = smooth ? GL_LINEAR : GL_NEAREST;
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, static_cast<GLsizei>(width), static_cast<GLsizei>(height), 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, rgba);
     glBindTexture(GL_TEXTURE_2D, 0);
+    storage_width_ = width;
+    storage_height_ = height;
+    smooth_ = smooth;
 }
 
-std::vector<uint8_t> to_rgba8(const std::vector<float> &rgba, const float background[3])
+void GlTexture::reserve(int64_t width, int64_t height, bool smooth)
 {
-    std::vector<uint8_t> out(rgba.size());
+    if (width <= storage_width_ && height <= storage_height_ && smooth == smooth_ && id_)
+        return;
+    // Zeros, so the driver writes (and so maps) every page now.
+    const std::vector<uint8_t> zeros(static_cast<std::size_t>(width * height * 4), 0);
+    allocate(zeros.data(), width, height, smooth);
+    width_ = height_ = 0;
+}
+
+void GlTexture::upload(const uint8_t *rgba, int64_t width, int64_t height, bool smooth)
+{
+    if (width <= 0 || height <= 0)
+        return;
+    if (!id_ || width > storage_width_ || height > storage_height_ || smooth != smooth_) {
+        allocate(rgba, width, height, smooth);
+    } else {
+        glBindTexture(GL_TEXTURE_2D, id_);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, static_cast<GLsizei>(width), static_cast<GLsizei>(height), GL_RGBA,
+                        GL_UNSIGNED_BYTE, rgba);
+        glBindTexture(GL_TEXTURE_2D, 0);
+    }
+    width_ = width;
+    height_ = height;
+}
+
+void to_rgba8(const std::vector<float> &rgba, const float background[3], std::vector<uint8_t> &out)
+{
+    out.resize(rgba.size());
     for (std::size_t p = 0; p + 3 < rgba.size(); p += 4) {
         const float a = std::clamp(rgba[p + 3], 0.0f, 1.0f);
         for (int k = 0; k < 3; ++k) {
@@ -50,7 +70,6 @@ std::vector<uint8_t> to_rgba8(const std::vector<float> &rgba, const float backgr
         }
         out[p + 3] = 255;
     }
-    return out;
 }
 
 } // namespace arbor::workstation

@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <vector>
@@ -16,23 +17,52 @@ namespace arbor::workstation {
 using pipeline::Stage;
 
 
-double PriorityLineView::value(const Row &row, uint32_t branch) const
+double PriorityLineView::value(const topology::BranchDecomposition &d, const Row &row, uint32_t branch)
 {
-    const topology::BranchDecomposition &d = rows_of_->branches;
     if (row.measure >= 0)
         return d.relative(branch, row.measure);
     const double importance = d.branches[branch].importance;
     return std::isfinite(importance) ? importance : 0.0;
 }
 
-void PriorityLineView::build_rows(Workstation &ws, const pipeline::DecompositionResult &decomposition,
-                                  std::size_t count)
+PriorityLineView::Ordering
+PriorityLineView::order_branches(std::shared_ptr<const pipeline::DecompositionResult> decomposition,
+                                 std::vector<Row> rows, std::size_t count)
 {
-    const topology::BranchDecomposition &d = decomposition.branches;
+    const topology::BranchDecomposition &d = decomposition->branches;
     const std::size_t n = d.branches.size();
-    const std::string current = pipeline::short_name(decomposition.simplifier.id);
-    rows_.clear();
-    rows_.push_back(Row{current, -1, true});
+    for (Row &row : rows) {
+        row.top = 0;
+        for (uint32_t b = 1; b < n; ++b)
+            row.top = std::max(row.top, value(d, row, b));
+        if (!(row.top > 0))
+            row.top = 1;
+    }
+    // The current simplifier's order, most important first (the root left
+    // out; equal importances by branch index), as far as `count`.
+    const Row &current = rows[0];
+    const auto before = [&](uint32_t a, uint32_t b) {
+        const double va = value(d, current, a), vb = value(d, current, b);
+        return va > vb || (va == vb && a < b);
+    };
+    std::vector<uint32_t> order(n > 0 ? n - 1 : 0);
+    std::iota(order.begin(), order.end(), 1u);
+    count = std::min(count, order.size());
+    std::nth_element(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count), order.end(), before);
+    order.resize(count);
+    std::sort(order.begin(), order.end(), before);
+    return {std::move(decomposition), std::move(rows), std::move(order)};
+}
+
+void PriorityLineView::start_ordering(Workstation &ws,
+                                      const std::shared_ptr<const pipeline::DecompositionResult> &decomposition,
+                                      std::size_t count)
+{
+    if (ordering_.valid())
+        return;
+    // The rows (which simplifiers are installed) here: the catalog is the UI thread's.
+    const std::string current = pipeline::short_name(decomposition->simplifier.id);
+    std::vector<Row> rows{Row{current, -1, true}};
     const std::pair<const char *, int> measures[] = {
         {"persistence", topology::kPersistence}, {"volume", topology::kVolume}, {"hypervolume", topology::kHypervolume}};
     for (const auto &[name, m] : measures) {
@@ -43,31 +73,14 @@ void PriorityLineView::build_rows(Workstation &ws, const pipeline::Decomposition
         } catch (const std::exception &) {
             continue; // not installed
         }
-        rows_.push_back(Row{name, m, false});
+        rows.push_back(Row{name, m, false});
     }
-    for (Row &row : rows_) {
-        row.top = 0;
-        for (uint32_t b = 1; b < n; ++b)
-            row.top = std::max(row.top, value(row, b));
-        if (!(row.top > 0))
-            row.top = 1;
-    }
-    // The current simplifier's order, most important first (the root left
-    // out; equal importances by branch index), as far as `count`.
-    const auto before = [&](uint32_t a, uint32_t b) {
-        const double va = value(rows_[0], a), vb = value(rows_[0], b);
-        return va > vb || (va == vb && a < b);
-    };
-    order_.resize(n > 0 ? n - 1 : 0);
-    std::iota(order_.begin(), order_.end(), 1u);
-    count = std::min(count, order_.size());
-    std::nth_element(order_.begin(), order_.begin() + static_cast<std::ptrdiff_t>(count), order_.end(), before);
-    order_.resize(count);
-    std::sort(order_.begin(), order_.end(), before);
+    ordering_ = std::async(std::launch::async, order_branches, decomposition, std::move(rows), count);
 }
 
 void PriorityLineView::draw(Workstation &ws)
 {
+    showed_rows_ = false;
     const auto cut = ws.pipeline().latest<Stage::Cut>();
     if (!cut) {
         ImGui::TextDisabled(ws.has_input() ? "the contour tree is being computed" : "no volume");
@@ -80,10 +93,20 @@ void PriorityLineView::draw(Workstation &ws)
     // would be a flat line of pixels).
     const std::size_t wanted = std::min(n > 0 ? n - 1 : 0, std::max<std::size_t>({3 * cut->kept(), 64,
                                                                                   static_cast<std::size_t>(avail.x / 3)}));
-    if (cut->decomposition != rows_of_ || order_.size() < wanted) {
-        rows_of_ = cut->decomposition;
-        build_rows(ws, *cut->decomposition, std::max<std::size_t>(2 * wanted, 4096));
+    if (ordering_.valid() && ordering_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        Ordering done = ordering_.get();
+        rows_of_ = std::move(done.of);
+        rows_ = std::move(done.rows);
+        order_ = std::move(done.order);
     }
+    if (cut->decomposition != rows_of_ || order_.size() < wanted)
+        start_ordering(ws, cut->decomposition, std::max<std::size_t>(2 * wanted, 4096));
+    if (cut->decomposition != rows_of_) {
+        ImGui::TextDisabled("ordering %zu branches", n);
+        return;
+    }
+    const topology::BranchDecomposition &d = rows_of_->branches;
+    showed_rows_ = true;
     const std::vector<Row> &rows = rows_;
     const std::vector<uint32_t> &order = order_;
     const auto &kept_index = cut->cut.kept_index;
@@ -95,7 +118,7 @@ void PriorityLineView::draw(Workstation &ws)
     bool any_kept = false;
     for (const uint32_t b : cut->cut.kept)
         if (b != 0) {
-            lowest_kept = any_kept ? std::min(lowest_kept, value(rows[0], b)) : value(rows[0], b);
+            lowest_kept = any_kept ? std::min(lowest_kept, value(d, rows[0], b)) : value(d, rows[0], b);
             any_kept = true;
         }
     for (const Row &row : rows) {
@@ -115,7 +138,7 @@ void PriorityLineView::draw(Workstation &ws)
         float tallest = 0;
         for (std::size_t i = 0; i < shown; ++i) {
             const uint32_t b = order[i];
-            const float h = static_cast<float>(value(row, b) / top) * plot_h;
+            const float h = static_cast<float>(value(d, row, b) / top) * plot_h;
             const int px = static_cast<int>(static_cast<float>(i) * px_per);
             if (px == last_px && h <= tallest)
                 continue;

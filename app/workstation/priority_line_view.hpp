@@ -10,7 +10,9 @@
 #pragma once
 
 #include "pipeline/stage_results.hpp"
+#include "topology/branch_decomposition.hpp"
 
+#include <future>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +24,9 @@ class Workstation;
 class PriorityLineView {
 public:
     void draw(Workstation &workstation);
+    // Whether the last draw showed the rows (not "ordering": the branches
+    // of a new decomposition are ordered off the UI thread first).
+    bool showed_rows() const { return showed_rows_; }
 
 private:
     struct Row {
@@ -30,12 +35,23 @@ private:
         bool current = false;
         double top = 1;         // the largest value: the row's full height
     };
-    double value(const Row &row, uint32_t branch) const;
-    // The rows and the `count` most important branches, in order.  Nothing
-    // per branch is kept but that order: a noisy scan's decomposition has
-    // hundreds of thousands of branches, and arrays of them made on the UI
-    // thread cost it a frame in page faults alone.
-    void build_rows(Workstation &ws, const pipeline::DecompositionResult &decomposition, std::size_t count);
+    // What the rows show, made off the UI thread: each row's largest value
+    // and the `count` most important branches, in order.  Nothing per branch
+    // is kept but that order: a noisy scan's decomposition has hundreds of
+    // thousands of branches; ordering them took the UI thread 16-24 ms, a
+    // frame over budget as the tree arrived.
+    struct Ordering {
+        std::shared_ptr<const pipeline::DecompositionResult> of;
+        std::vector<Row> rows;
+        std::vector<uint32_t> order;
+    };
+    static double value(const topology::BranchDecomposition &d, const Row &row, uint32_t branch);
+    static Ordering order_branches(std::shared_ptr<const pipeline::DecompositionResult> decomposition,
+                                   std::vector<Row> rows, std::size_t count);
+    // Starts ordering `decomposition` unless an ordering is under way (a
+    // newer one starts when it is done: a future's destructor would wait).
+    void start_ordering(Workstation &ws, const std::shared_ptr<const pipeline::DecompositionResult> &decomposition,
+                        std::size_t count);
 
     // The decomposition they were made for: a new decomposition (a new tree,
     // another simplifier) makes them again, a new cut of the same one (a
@@ -43,6 +59,8 @@ private:
     std::shared_ptr<const pipeline::DecompositionResult> rows_of_;
     std::vector<Row> rows_;
     std::vector<uint32_t> order_; // the current simplifier's most important branches, most important first
+    std::future<Ordering> ordering_;
+    bool showed_rows_ = false;
     std::string dragging_; // the row's simplifier while its threshold is dragged
 };
 

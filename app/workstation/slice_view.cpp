@@ -14,6 +14,21 @@ namespace arbor::workstation {
 
 using pipeline::Stage;
 
+namespace {
+
+// Most CT and MR slices are 512 pixels a side or less.
+constexpr int64_t kReserved = 1024;
+
+} // namespace
+
+void SliceView::reserve()
+{
+    texture_.reserve(kReserved, kReserved, false);
+    image_.rgba.assign(static_cast<std::size_t>(kReserved * kReserved * 4), 0);
+    const uint8_t black[4] = {0, 0, 0, 255};
+    texture_.upload(black, 1, 1, false);
+}
+
 void SliceView::draw(Workstation &ws)
 {
     const ImVec2 avail = ImGui::GetContentRegionAvail();
@@ -21,11 +36,9 @@ void SliceView::draw(Workstation &ws)
     if (!filtered) {
         // A black pixel drawn until there is a volume (see VolumeView: the
         // software OpenGL compiles its shader for nearest filtering now).
-        if (texture_.empty()) {
-            const uint8_t black[4] = {0, 0, 0, 255};
-            texture_.upload(black, 1, 1, false);
-        }
-        ImGui::Image(texture_.imgui_id(), ImVec2(1, 1));
+        if (texture_.empty())
+            reserve();
+        ImGui::Image(texture_.imgui_id(), ImVec2(1, 1), ImVec2(0, 0), ImVec2(texture_.u_max(), texture_.v_max()));
         ImGui::TextDisabled("%s: no volume yet", orientation_name(orientation_));
         return;
     }
@@ -64,7 +77,7 @@ void SliceView::draw(Workstation &ws)
     const float scale = static_cast<float>(std::min(avail.x / mm_w, (avail.y - 18) / mm_h));
     const ImVec2 size{static_cast<float>(mm_w) * scale, static_cast<float>(mm_h) * scale};
     const ImVec2 lo = ImGui::GetCursorScreenPos();
-    ImGui::Image(texture_.imgui_id(), size);
+    ImGui::Image(texture_.imgui_id(), size, ImVec2(0, 0), ImVec2(texture_.u_max(), texture_.v_max()));
     const bool hovered = ImGui::IsItemHovered();
     ImDrawList *dl = ImGui::GetWindowDrawList();
     const ImVec2 hi{lo.x + size.x, lo.y + size.y};

@@ -59,6 +59,14 @@ void draw_orientation(ImDrawList *dl, ImVec2 lo, ImVec2 hi, const arbor_camera &
 
 } // namespace
 
+void VolumeView::reserve(uint32_t width, uint32_t height)
+{
+    texture_.reserve(width, height, false);
+    rgba_.assign(static_cast<std::size_t>(width) * height * 4, 0);
+    const uint8_t black[4] = {0, 0, 0, 255};
+    texture_.upload(black, 1, 1, false);
+}
+
 void VolumeView::draw(Workstation &ws)
 {
     const ImVec2 avail = ImGui::GetContentRegionAvail();
@@ -68,10 +76,10 @@ void VolumeView::draw(Workstation &ws)
     if (frame && frame.get() != shown_ && frame->image.width > 0) {
         const auto &bg = ws.document().view.background;
         const float back[3] = {static_cast<float>(bg[0]), static_cast<float>(bg[1]), static_cast<float>(bg[2])};
-        const std::vector<uint8_t> rgba = to_rgba8(frame->image.rgba, back);
+        to_rgba8(frame->image.rgba, back, rgba_);
         // Shown pixel for pixel: nearest sampling is exact, and a software
         // OpenGL's bilinear filter costs a good part of a frame.
-        texture_.upload(rgba.data(), frame->image.width, frame->image.height, false);
+        texture_.upload(rgba_.data(), frame->image.width, frame->image.height, false);
         shown_ = frame.get();
     }
     if (texture_.empty()) {
@@ -80,14 +88,14 @@ void VolumeView::draw(Workstation &ws)
         // llvmpipe), better at startup than while the first jobs run.
         // (The relation wheel's scaled, linearly filtered texture draws from
         // the start too, with its one-pixel stand-in.)
-        const uint8_t black[4] = {0, 0, 0, 255};
-        texture_.upload(black, 1, 1, false);
+        reserve(w, h);
     }
     const ImVec2 lo = ImGui::GetCursorScreenPos();
     const ImVec2 hi{lo.x + w, lo.y + h};
     ImDrawList *dl = ImGui::GetWindowDrawList();
     // The frame keeps its own size while a new one for the new viewport renders.
-    ImGui::Image(texture_.imgui_id(), ImVec2(static_cast<float>(texture_.width()), static_cast<float>(texture_.height())));
+    ImGui::Image(texture_.imgui_id(), ImVec2(static_cast<float>(texture_.width()), static_cast<float>(texture_.height())),
+                 ImVec2(0, 0), ImVec2(texture_.u_max(), texture_.v_max()));
     ImGui::SetCursorScreenPos(lo);
     ImGui::InvisibleButton("volume-view", ImVec2(static_cast<float>(w), static_cast<float>(h)),
                            ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonMiddle |

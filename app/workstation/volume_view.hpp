@@ -10,6 +10,7 @@
 #include "gl_texture.hpp"
 
 #include <cstdint>
+#include <vector>
 
 namespace arbor::workstation {
 
@@ -19,10 +20,15 @@ class VolumeView {
 public:
     // Draws into the current ImGui window's remaining space.
     void draw(Workstation &workstation);
+    // Texture and pixel memory for frames up to `width` x `height`, made
+    // now, before any job runs (see SliceView::reserve).  Needs the
+    // window's OpenGL context current.
+    void reserve(uint32_t width, uint32_t height);
 
 private:
     GlTexture texture_;
     const void *shown_ = nullptr; // the frame uploaded last
+    std::vector<uint8_t> rgba_;   // its 8-bit pixels (the memory reused frame after frame)
     bool dragging_ = false;
 };
 

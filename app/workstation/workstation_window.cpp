@@ -583,6 +583,15 @@ int Window::run()
             text << in.rdbuf();
             script_.emplace(parse_script(text.str(), options_.script.string()), options_.script.string());
         }
+        // The views' memory before the first job (see SliceView::reserve):
+        // a 3D view as large as the window, slices up to 1024 a side.
+        {
+            int fw = 0, fh = 0;
+            glfwGetFramebufferSize(window_, &fw, &fh);
+            volume_.reserve(static_cast<uint32_t>(std::max(fw, 16)), static_cast<uint32_t>(std::max(fh, 16)));
+            for (SliceView &s : slices_)
+                s.reserve();
+        }
         if (options_.open)
             open(*options_.open);
         else if (options_.recovery && !script_ && fs::exists(recovery_path()))

@@ -107,6 +107,12 @@ TEST(Panels, DraggingThePriorityLineSetsTheThresholdAsOneUndoStep)
     PriorityLineView lines;
     const auto draw = [&] { lines.draw(*ws); };
     gui.frame(draw, {0, 0}, false);
+    // The branches are ordered off the UI thread: "ordering" until then.
+    for (int i = 0; i < 1000 && !lines.showed_rows(); ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        gui.frame(draw, {0, 0}, false);
+    }
+    ASSERT_TRUE(lines.showed_rows()) << "the rows within 5 s";
     const std::size_t steps = ws->history().names().size();
     // Press low in the first row (the current simplifier's) and drag up.
     gui.frame(draw, {200, 60}, false);
