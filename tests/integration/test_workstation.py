@@ -118,15 +118,14 @@ quit
         # The first frames compile the software OpenGL's shaders: not counted.
         during = [(float(t), float(ms)) for t, ms, jobs in frames[5:] if "contour_tree" in jobs]
         self.assertGreater(len(during), 10, "frames were drawn while the tree was computed")
-        # The issue asks for no frame over 100 ms.  About one run in four has
-        # a single stall of 250-280 ms as the tree finishes (cause not found
-        # yet; issue 15 stays open for it): at most one frame over 100 ms,
-        # none over 400 ms, and the 95th percentile under 50 ms.
+        # The issue asks for no frame over 100 ms while the tree computes.
         slow = sorted(ms for _, ms in during if ms >= 100)
-        self.assertLessEqual(len(slow), 1, f"frames over 100 ms while the tree was computed: {slow}")
-        self.assertLess(max(ms for _, ms in during), 400)
-        times = sorted(ms for _, ms in during)
-        self.assertLess(times[int(0.95 * (len(times) - 1))], 50)
+        self.assertEqual(slow, [], "frames over 100 ms while the tree was computed")
+        # And a UI that keeps drawing at 30 frames a second while any job
+        # runs: 95 % of those frames within 33 ms (the rest is the software
+        # OpenGL's swap on a machine whose cores the jobs use).
+        busy = sorted(float(ms) for t, ms, jobs in frames[5:] if not jobs.startswith("-"))
+        self.assertLessEqual(busy[int(0.95 * (len(busy) - 1))], 33.0, "95th percentile of frames while jobs ran")
 
     def test_bad_scripts_name_their_line(self):
         status, _, err = view(script="open /no/such/scan.nrrd\nquit\n", check=False)
