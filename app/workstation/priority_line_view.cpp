@@ -25,6 +25,29 @@ double PriorityLineView::value(const topology::BranchDecomposition &d, const Row
     return std::isfinite(importance) ? importance : 0.0;
 }
 
+PriorityScale PriorityScale::of(double top, double least)
+{
+    PriorityScale s;
+    s.top = top > 0 ? top : 1;
+    s.bottom = least > 0 && s.top / least > 100 ? std::max(least, s.top * 1e-6) : 0.0;
+    return s;
+}
+
+double PriorityScale::height(double value) const
+{
+    if (!(value > 0))
+        return 0;
+    if (bottom > 0)
+        return std::clamp(std::log(value / bottom) / std::log(top / bottom), 0.0, 1.0);
+    return std::clamp(value / top, 0.0, 1.0);
+}
+
+double PriorityScale::value_at(double h) const
+{
+    h = std::clamp(h, 0.0, 1.0);
+    return bottom > 0 ? bottom * std::pow(top / bottom, h) : h * top;
+}
+
 PriorityLineView::Ordering
 PriorityLineView::order_branches(std::shared_ptr<const pipeline::DecompositionResult> decomposition,
                                  std::vector<Row> rows, std::size_t count)
@@ -121,8 +144,14 @@ void PriorityLineView::draw(Workstation &ws)
             lowest_kept = any_kept ? std::min(lowest_kept, value(d, rows[0], b)) : value(d, rows[0], b);
             any_kept = true;
         }
+    const std::size_t shown = std::min(order.size(), wanted);
     for (const Row &row : rows) {
-        const double top = row.top;
+        // The scale of what is shown (the rest of the order is in reserve).
+        double least = row.top;
+        for (std::size_t i = 0; i < shown; ++i)
+            if (const double v = value(d, row, order[i]); v > 0)
+                least = std::min(least, v);
+        const PriorityScale scale = PriorityScale::of(row.top, least);
         const ImVec2 lo = ImGui::GetCursorScreenPos();
         const ImVec2 size{avail.x, row_h - 4};
         ImGui::PushID(row.simplifier.c_str());
@@ -132,13 +161,12 @@ void PriorityLineView::draw(Workstation &ws)
         dl->AddRectFilled(lo, {lo.x + size.x, lo.y + size.y}, IM_COL32(25, 25, 30, 255));
         const float plot_h = size.y - 16;
         const float base = lo.y + size.y - 2;
-        const std::size_t shown = std::min(order.size(), wanted);
         const float px_per = shown > 0 ? size.x / static_cast<float>(shown) : 1;
         int last_px = -1;
         float tallest = 0;
         for (std::size_t i = 0; i < shown; ++i) {
             const uint32_t b = order[i];
-            const float h = static_cast<float>(value(d, row, b) / top) * plot_h;
+            const float h = static_cast<float>(scale.height(value(d, row, b))) * plot_h;
             const int px = static_cast<int>(static_cast<float>(i) * px_per);
             if (px == last_px && h <= tallest)
                 continue;
@@ -158,17 +186,19 @@ void PriorityLineView::draw(Workstation &ws)
         // The threshold line.
         float fraction = 0;
         if (row.current)
-            fraction = static_cast<float>(lowest_kept / top);
+            fraction = static_cast<float>(scale.height(lowest_kept));
         if (row.current || dragging_ == row.simplifier) {
             const float y = base - fraction * plot_h;
             dl->AddLine({lo.x, y}, {lo.x + size.x, y}, IM_COL32(255, 80, 80, 255), 2.0f);
         }
         char title[96];
-        std::snprintf(title, sizeof title, "%s%s", row.simplifier.c_str(), row.current ? "  (drag the red line)" : "");
+        std::snprintf(title, sizeof title, "%s%s%s", row.simplifier.c_str(), scale.bottom > 0 ? " (log)" : "",
+                      row.current ? "  (drag the red line)" : "");
         dl->AddText({lo.x + 4, lo.y + 1}, IM_COL32(220, 220, 220, 255), title);
         if (active) {
             const float y = ImGui::GetIO().MousePos.y;
-            const double f = std::clamp((base - y) / plot_h, 0.0f, 1.0f);
+            // The height dragged to, as a fraction of the row's top value.
+            const double f = scale.value_at((base - y) / plot_h) / scale.top;
             try {
                 if (!row.current) {
                     pipeline::Document doc = ws.document();

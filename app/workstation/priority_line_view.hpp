@@ -6,7 +6,10 @@
 // current simplifier's row is its own importance; the rows of the other
 // single-measure simplifiers (persistence, volume, hypervolume) are those
 // measures relative to the root, and dragging in one of them switches to
-// that simplifier.  Keep-N is the alternative: a slider below.
+// that simplifier.  A row whose values span more than two decades is drawn
+// on a log scale (the study's figures use one too), else a dominant branch
+// leaves the others a flat line the threshold cannot be placed on.  Keep-N
+// is the alternative: a slider below.
 #pragma once
 
 #include "pipeline/stage_results.hpp"
@@ -21,6 +24,18 @@ namespace arbor::workstation {
 
 class Workstation;
 
+// A priority-line row's vertical scale: linear from 0 to its largest value,
+// or, when the values shown span more than two decades (one dominant branch,
+// as ITri's often has), logarithmic from the smallest positive one.
+struct PriorityScale {
+    double top = 1;    // the row's full height
+    double bottom = 0; // log scale from here; 0: linear
+    // `least`: the smallest positive value shown.
+    static PriorityScale of(double top, double least);
+    double height(double value) const;    // 0..1 of the row
+    double value_at(double height) const; // the inverse
+};
+
 class PriorityLineView {
 public:
     void draw(Workstation &workstation);
@@ -33,7 +48,7 @@ private:
         std::string simplifier; // short plugin name
         int measure = -1;       // topology::kPersistence...: that measure relative to the root; -1: the importance
         bool current = false;
-        double top = 1;         // the largest value: the row's full height
+        double top = 1;         // its largest value (over every branch)
     };
     // What the rows show, made off the UI thread: each row's largest value
     // and the `count` most important branches, in order.  Nothing per branch

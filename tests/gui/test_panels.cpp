@@ -100,6 +100,33 @@ TEST(Panels, ClickingTheTreeSelectsTheBranchItsHoverNames)
     EXPECT_TRUE(ws->history().can_undo()) << "a selection is an undo step";
 }
 
+TEST(PriorityScale, LinearUnlessTheValuesSpanMoreThanTwoDecades)
+{
+    const PriorityScale linear = PriorityScale::of(2.0, 0.05); // 40x
+    EXPECT_EQ(linear.bottom, 0.0);
+    EXPECT_DOUBLE_EQ(linear.height(1.0), 0.5);
+    EXPECT_DOUBLE_EQ(linear.value_at(0.25), 0.5);
+
+    // ITri's usual shape: one branch at 1, the rest from 1e-4 to 1e-2.
+    const PriorityScale log = PriorityScale::of(1.0, 1e-4);
+    EXPECT_DOUBLE_EQ(log.bottom, 1e-4);
+    EXPECT_NEAR(log.height(1e-2), 0.5, 1e-12) << "a decade is a quarter of the row";
+    EXPECT_NEAR(log.height(1e-3), 0.25, 1e-12);
+    EXPECT_EQ(log.height(1e-5), 0.0) << "below the smallest shown: at the base";
+    EXPECT_EQ(log.height(0.0), 0.0);
+    EXPECT_DOUBLE_EQ(log.height(1.0), 1.0);
+    for (const double v : {1e-4, 3e-4, 0.01, 0.2, 1.0})
+        EXPECT_NEAR(log.value_at(log.height(v)), v, 1e-12 * v) << v;
+    // Heights grow with values, as a threshold dragged up keeps fewer.
+    double last = -1;
+    for (double v = 1e-4; v <= 1.0; v *= 1.7) {
+        EXPECT_GT(log.height(v), last);
+        last = log.height(v);
+    }
+    // A scale never reaches further down than six decades.
+    EXPECT_DOUBLE_EQ(PriorityScale::of(1.0, 1e-9).bottom, 1e-6);
+}
+
 TEST(Panels, DraggingThePriorityLineSetsTheThresholdAsOneUndoStep)
 {
     auto ws = phantom();
