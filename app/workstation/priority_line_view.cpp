@@ -98,7 +98,12 @@ void PriorityLineView::start_ordering(Workstation &ws,
         }
         rows.push_back(Row{name, m, false});
     }
-    ordering_ = std::async(std::launch::async, order_branches, decomposition, std::move(rows), count);
+    try {
+        ordering_ = std::async(std::launch::async, order_branches, decomposition, std::move(rows), count);
+    } catch (const std::exception &e) { // no thread to be had
+        ws.say(ARBOR_LOG_ERROR, std::string("priority lines: ") + e.what());
+        failed_ = decomposition;
+    }
 }
 
 void PriorityLineView::draw(Workstation &ws)
@@ -117,10 +122,19 @@ void PriorityLineView::draw(Workstation &ws)
     const std::size_t wanted = std::min(n > 0 ? n - 1 : 0, std::max<std::size_t>({3 * cut->kept(), 64,
                                                                                   static_cast<std::size_t>(avail.x / 3)}));
     if (ordering_.valid() && ordering_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
-        Ordering done = ordering_.get();
-        rows_of_ = std::move(done.of);
-        rows_ = std::move(done.rows);
-        order_ = std::move(done.order);
+        try {
+            Ordering done = ordering_.get();
+            rows_of_ = std::move(done.of);
+            rows_ = std::move(done.rows);
+            order_ = std::move(done.order);
+        } catch (const std::exception &e) { // out of memory: the view says so, the window goes on
+            ws.say(ARBOR_LOG_ERROR, std::string("priority lines: ") + e.what());
+            failed_ = cut->decomposition;
+        }
+    }
+    if (failed_ == cut->decomposition) {
+        ImGui::TextDisabled("the branches could not be ordered");
+        return;
     }
     if (cut->decomposition != rows_of_ || order_.size() < wanted)
         start_ordering(ws, cut->decomposition, std::max<std::size_t>(2 * wanted, 4096));

@@ -75,6 +75,7 @@ private:
     std::vector<Row> rows_;
     std::vector<uint32_t> order_; // the current simplifier's most important branches, most important first
     std::future<Ordering> ordering_;
+    std::shared_ptr<const pipeline::DecompositionResult> failed_; // the decomposition that could not be ordered
     bool showed_rows_ = false;
     std::string dragging_; // the row's simplifier while its threshold is dragged
 };
