@@ -39,7 +39,8 @@ void GlTexture::reserve(int64_t width, int64_t height, bool smooth)
     // Zeros, so the driver writes (and so maps) every page now.
     const std::vector<uint8_t> zeros(static_cast<std::size_t>(width * height * 4), 0);
     allocate(zeros.data(), width, height, smooth);
-    width_ = height_ = 0;
+    const uint8_t black[4] = {0, 0, 0, 255};
+    upload(black, 1, 1, smooth);
 }
 
 void GlTexture::upload(const uint8_t *rgba, int64_t width, int64_t height, bool smooth)

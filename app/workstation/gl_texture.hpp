@@ -23,6 +23,8 @@ public:
     // touched) now: a view that reserves before any job runs later uploads
     // without allocating, whose page faults wait on the jobs' own mappings
     // (the first slice images cost a frame 40-50 ms so while the tree ran).
+    // Its image is then one black pixel: drawing it makes a software OpenGL
+    // compile its shader at startup rather than while the first jobs run.
     void reserve(int64_t width, int64_t height, bool smooth);
     bool empty() const { return id_ == 0; }
     // For ImGui::Image: the texture and the corner of its storage the last

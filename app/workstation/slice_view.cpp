@@ -25,8 +25,6 @@ void SliceView::reserve()
 {
     texture_.reserve(kReserved, kReserved, false);
     image_.rgba.assign(static_cast<std::size_t>(kReserved * kReserved * 4), 0);
-    const uint8_t black[4] = {0, 0, 0, 255};
-    texture_.upload(black, 1, 1, false);
 }
 
 void SliceView::draw(Workstation &ws)

@@ -63,8 +63,6 @@ void VolumeView::reserve(uint32_t width, uint32_t height)
 {
     texture_.reserve(width, height, false);
     rgba_.assign(static_cast<std::size_t>(width) * height * 4, 0);
-    const uint8_t black[4] = {0, 0, 0, 255};
-    texture_.upload(black, 1, 1, false);
 }
 
 void VolumeView::draw(Workstation &ws)
