@@ -38,6 +38,42 @@ void check_region(const PluginInstance &renderer, RenderedImage &frame, const Re
                           renderer.id() + " measured more visibility than the image's pixels can hold");
 }
 
+// The arbor.renderer/2 request for `pass` of `region` of a frame.
+arbor_render_request_v2 pass_request(const arbor_render_request &request, const FramePass &pass, uint32_t width,
+                                     uint32_t height, const Region &region)
+{
+    arbor_render_request_v2 r{};
+    r.struct_size = sizeof r;
+    r.pass = pass.pass;
+    r.volume = request.volume;
+    r.labels = request.labels;
+    r.transfer_functions = request.transfer_functions;
+    r.camera = request.camera;
+    std::copy(std::begin(request.background), std::end(request.background), r.background);
+    r.volume_revision = request.volume_revision;
+    r.labels_revision = request.labels_revision;
+    r.transfer_functions_revision = pass.transfer_functions_revision;
+    r.frame_width = width;
+    r.frame_height = height;
+    r.region_x = region.x;
+    r.region_y = region.y;
+    r.region_width = region.width;
+    r.region_height = region.height;
+    r.sample_index = pass.pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? pass.sample_index : 0;
+    return r;
+}
+
+// The whole frame for width 0; throws when the region is not in the frame.
+Region checked_region(Region region, uint32_t width, uint32_t height)
+{
+    if (region.width == 0 || region.height == 0)
+        region = {0, 0, width, height};
+    if (region.x >= width || region.y >= height || region.width > width - region.x ||
+        region.height > height - region.y)
+        throw std::invalid_argument("the region to render lies outside the frame");
+    return region;
+}
+
 } // namespace
 
 bool renders_passes(const PluginInstance &renderer)
@@ -66,35 +102,14 @@ RenderDevice render_device(const PluginInstance &renderer)
 void render_region(PluginInstance &renderer, const arbor_render_request &request, RenderedImage &frame,
                    Region region, const FramePass &pass, ProgressSink *progress, std::stop_token stop)
 {
-    if (region.width == 0 || region.height == 0)
-        region = {0, 0, frame.width, frame.height};
-    if (region.x >= frame.width || region.y >= frame.height || region.width > frame.width - region.x ||
-        region.height > frame.height - region.y)
-        throw std::invalid_argument("the region to render lies outside the frame");
+    region = checked_region(region, frame.width, frame.height);
     const std::size_t labels = request.transfer_functions->branch_count;
     // NaN: "not measured"; a renderer that measures visibility overwrites all.
     frame.label_visibility.assign(labels, std::numeric_limits<double>::quiet_NaN());
     Task task(progress, std::move(stop));
     if (renders_passes(renderer)) {
         const auto &table = renderer.interface<arbor_renderer_v2>(ARBOR_INTERFACE_RENDERER_2);
-        arbor_render_request_v2 r{};
-        r.struct_size = sizeof r;
-        r.pass = pass.pass;
-        r.volume = request.volume;
-        r.labels = request.labels;
-        r.transfer_functions = request.transfer_functions;
-        r.camera = request.camera;
-        std::copy(std::begin(request.background), std::end(request.background), r.background);
-        r.volume_revision = request.volume_revision;
-        r.labels_revision = request.labels_revision;
-        r.transfer_functions_revision = pass.transfer_functions_revision;
-        r.frame_width = frame.width;
-        r.frame_height = frame.height;
-        r.region_x = region.x;
-        r.region_y = region.y;
-        r.region_width = region.width;
-        r.region_height = region.height;
-        r.sample_index = pass.pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? pass.sample_index : 0;
+        const arbor_render_request_v2 r = pass_request(request, pass, frame.width, frame.height, region);
         arbor_image out{};
         out.struct_size = sizeof out;
         out.width = region.width;
@@ -140,6 +155,38 @@ void render_region(PluginInstance &renderer, const arbor_render_request &request
             }
     }
     check_region(renderer, frame, region, labels);
+}
+
+bool renders_into_gl(const PluginInstance &renderer)
+{
+    const auto *table = static_cast<const arbor_renderer_gl_v1 *>(
+        renderer.call("plugin.get_interface", renderer.get()->get_interface, ARBOR_INTERFACE_RENDERER_GL));
+    return table && table->struct_size >= ARBOR_MIN_SIZE(arbor_renderer_gl_v1) && table->render_gl &&
+           table->release_gl && renders_passes(renderer);
+}
+
+void render_gl(PluginInstance &renderer, const arbor_render_request &request, const GlFrame &frame, Region region,
+               const FramePass &pass, ProgressSink *progress, std::stop_token stop)
+{
+    region = checked_region(region, frame.width, frame.height);
+    if (frame.texture == 0)
+        throw std::invalid_argument("no texture to render into");
+    const auto &table = renderer.interface<arbor_renderer_gl_v1>(ARBOR_INTERFACE_RENDERER_GL);
+    const arbor_render_request_v2 r = pass_request(request, pass, frame.width, frame.height, region);
+    arbor_gl_target target{};
+    target.struct_size = sizeof target;
+    target.texture = frame.texture;
+    target.width = frame.width;
+    target.height = frame.height;
+    Task task(progress, std::move(stop));
+    renderer.check(renderer.call("renderer-gl.render_gl", table.render_gl, &r, &target, task.get()),
+                   "rendering into the OpenGL context");
+}
+
+void release_gl(PluginInstance &renderer)
+{
+    const auto &table = renderer.interface<arbor_renderer_gl_v1>(ARBOR_INTERFACE_RENDERER_GL);
+    renderer.check(renderer.call("renderer-gl.release_gl", table.release_gl), "releasing its OpenGL objects");
 }
 
 RenderedImage render_image(PluginInstance &renderer, const arbor_render_request &request, uint32_t width,

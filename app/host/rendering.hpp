@@ -41,6 +41,26 @@ void render_region(PluginInstance &renderer, const arbor_render_request &request
 // supersample passes).
 bool renders_passes(const PluginInstance &renderer);
 
+// A texture of the OpenGL context current on the calling thread, made by
+// the caller (GL_RGBA8, GL_RGBA16F or GL_RGBA32F, width x height: the
+// frame), that a renderer offering arbor.renderer-gl/1 renders into.
+struct GlFrame {
+    uint32_t texture = 0;
+    uint32_t width = 0, height = 0;
+};
+
+// Whether the renderer renders into the host's OpenGL context
+// (arbor.renderer-gl/1, with /2; an isolated plugin never does).
+bool renders_into_gl(const PluginInstance &renderer);
+
+// A pass of a region of the frame into its texture, as render_region does
+// into an image (no depth, no visibility).  Every call of one renderer
+// comes with the same context current; release_gl with it current before
+// the renderer is destroyed.
+void render_gl(PluginInstance &renderer, const arbor_render_request &request, const GlFrame &frame, Region region,
+               const FramePass &pass, ProgressSink *progress = nullptr, std::stop_token stop = {});
+void release_gl(PluginInstance &renderer);
+
 // What a renderer renders on (arbor.render-device/1); a renderer that does
 // not offer it counts as rendering on the CPU.  Throws PluginError when the
 // renderer cannot find out (an OpenGL renderer without a context).

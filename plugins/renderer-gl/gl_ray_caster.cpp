@@ -6,10 +6,12 @@
 // (plugins/raycast).  It renders offscreen, into framebuffer objects of an
 // EGL context (no window, no X server), on a thread of its own; tiles,
 // the coarse pass and supersampling follow arbor.renderer/2, as the CPU
-// ray caster's do, and it says whether its OpenGL is hardware.
+// ray caster's do, and it says whether its OpenGL is hardware.  Through
+// arbor.renderer-gl/1 it renders the same passes into a texture of the
+// host's own context instead (a workstation shows them without a read
+// back), with a second set of GL objects made in that context.
+#include "context_state.hpp"
 #include "gl_thread.hpp"
-#include "raycast_programs.hpp"
-#include "volume_textures.hpp"
 
 #include <block_statistics.hpp>
 #include <coarse_lattice.hpp>
@@ -39,8 +41,8 @@ const arbor_plugin_descriptor kGlRayCasterDescriptor = {
     "1.0.0",
     "Arbor",
     "The CPU ray caster's optical model (label-aware post-classification, boundary emphasis, Blinn-Phong, "
-    "ambient occlusion, empty-space skipping) in a GLSL 3.3 shader, offscreen through EGL; tiles, a coarse pass and "
-    "supersampling (arbor.renderer/2).",
+    "ambient occlusion, empty-space skipping) in a GLSL 3.3 shader, offscreen through EGL or into the host's OpenGL "
+    "context; tiles, a coarse pass and supersampling (arbor.renderer/2, arbor.renderer-gl/1).",
     "",
 };
 
@@ -67,69 +69,47 @@ public:
         : Renderer(kGlRayCasterDescriptor, host, raycast::optical_model_params(), Interface::v2)
     {
         offer_device(); // the context is made when first needed: creating an instance stays cheap
+        offer_gl();
     }
 
     ~GlRayCaster() override
     {
+        // The host's context is not current here: what render_gl made in it
+        // is the host's to release first (release_gl), else it leaks.
+        (void)host_.release();
         if (!gl_)
             return;
-        gl_->run([&] { // GL names die on the thread their context is current on
-            textures_ = VolumeTextures{};
-            programs_.clear();
-            for (Texture &t : targets_)
-                t.reset();
-            fbo_.reset();
-            vao_.reset();
-        });
+        gl_->run([&] { own_.reset(); }); // GL names die on the thread their context is current on
     }
 
     void render_region(const arbor_render_request_v2 &request, arbor_image &out, const sdk::Task &task) override
     {
         start();
         const raycast::VoxelGrid &g = prepare(request, task);
-        const bool coarse = request.pass == ARBOR_RENDER_PASS_COARSE;
         const uint32_t sample = request.pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? request.sample_index : 0;
         const bool want_visibility =
             ARBOR_HAS_FIELD(arbor_image, out.struct_size, label_visibility_count) && out.label_visibility;
         std::vector<double> visibility(table_.labels(), 0.0);
         const auto started = std::chrono::steady_clock::now();
 
-        RayGrid grid;
         std::unique_ptr<raycast::CoarseLattice> lattice;
-        if (coarse) {
-            const double pixels = coarse_rate_.pixels_for(request, params().number("coarse-rate"),
-                                                          static_cast<double>(params().integer("coarse-pixels")));
-            lattice = std::make_unique<raycast::CoarseLattice>(request, pixels);
-            grid.width = static_cast<GLsizei>(lattice->columns());
-            grid.height = static_cast<GLsizei>(lattice->rows());
-            grid.base_x = lattice->x(0);
-            grid.base_y = lattice->y(0);
-            grid.spacing = pixels;
-            grid.subpixel_x = grid.subpixel_y = 0;
-            grid.coarse = true;
-        } else {
-            grid.width = static_cast<GLsizei>(out.width);
-            grid.height = static_cast<GLsizei>(out.height);
-            grid.base_x = request.region_x;
-            grid.base_y = request.region_y;
-            if (sample) {
-                const auto offset = raycast::subpixel(sample);
-                grid.subpixel_x = offset[0];
-                grid.subpixel_y = offset[1];
-                grid.shift = std::fmod(raycast::kSupersampleShift * sample, 1.0);
-            }
-        }
+        const RayGrid grid = ray_grid(request, lattice);
         const std::size_t rays = static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height);
         std::vector<float> rgba(4 * rays), depth(rays);
         bool finished = false;
         gl_->run([&] {
-            textures_.bind(grid.coarse);
-            if (!cast(request, g, grid, task, 0, rgba.data(), depth.data(), nullptr))
+            ContextState &s = *own_;
+            sync(s, g);
+            s.textures.bind(grid.coarse);
+            if (!cast(s, request, g, grid, task, 0, false))
                 return;
+            read_image(grid, rgba.data(), depth.data());
             if (want_visibility) {
-                for (uint32_t base = 0; base < table_.labels(); base += kLabelsPerVisibilityDraw)
-                    if (!cast(request, g, grid, task, base, nullptr, nullptr, &visibility))
+                for (uint32_t base = 0; base < table_.labels(); base += kLabelsPerVisibilityDraw) {
+                    if (!cast(s, request, g, grid, task, base, true))
                         return;
+                    read_visibility(grid, base, visibility);
+                }
             }
             finished = true;
         });
@@ -137,7 +117,7 @@ public:
         if (!finished)
             sdk::fail(ARBOR_ERROR_CANCELLED, "cancelled");
         // Every pixel is written only now: a cancelled call left them all.
-        if (coarse) {
+        if (lattice) {
             std::vector<Sample> samples(rays);
             for (std::size_t r = 0; r < rays; ++r) {
                 std::memcpy(samples[r].rgba, &rgba[4 * r], sizeof samples[r].rgba);
@@ -157,6 +137,31 @@ public:
                 out.label_visibility[l] = l < visibility.size() ? visibility[l] : 0.0;
     }
 
+    // arbor.renderer-gl/1: the same rays in the host's context (current
+    // on this thread), then written into its texture by the present pass.
+    void render_gl(const arbor_render_request_v2 &request, const arbor_gl_target &target,
+                   const sdk::Task &task) override
+    {
+        const raycast::VoxelGrid &g = prepare(request, task);
+        const auto started = std::chrono::steady_clock::now();
+        std::unique_ptr<raycast::CoarseLattice> lattice;
+        const RayGrid grid = ray_grid(request, lattice);
+        if (!host_)
+            host_ = std::make_unique<ContextState>();
+        ContextState &s = *host_;
+        s.make_objects();
+        sync(s, g);
+        s.textures.bind(grid.coarse);
+        if (!cast(s, request, g, grid, task, 0, false))
+            sdk::fail(ARBOR_ERROR_CANCELLED, "cancelled"); // the target is not touched before the present pass
+        present(s, request, grid, target);
+        if (lattice)
+            coarse_rate_.rendered(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
+                                  static_cast<double>(request.region_width) * request.region_height);
+    }
+
+    void release_gl() override { host_.reset(); }
+
     void find_device() override { start(); }
 
 private:
@@ -168,41 +173,59 @@ private:
             return;
         auto gl = std::make_unique<GlThread>();
         gl->run([&] {
-            GLuint vao = 0, fbo = 0;
-            glGenVertexArrays(1, &vao);
-            glGenFramebuffers(1, &fbo);
-            VertexArray v(vao);
-            Framebuffer f(fbo);
-            check_gl("creating the framebuffer"); // on failure v and f die here, on this thread
-            vao_ = std::move(v);
-            fbo_ = std::move(f);
+            auto s = std::make_unique<ContextState>();
+            s->make_objects(); // on failure s dies here, on this thread
+            own_ = std::move(s);
         });
         const EglContext &c = gl->context();
         set_device(c.software() ? ARBOR_DEVICE_SOFTWARE_GPU : ARBOR_DEVICE_GPU, c.description());
         gl_ = std::move(gl);
     }
 
+    // The rays a pass casts over the request's region: a ray per pixel, or
+    // the coarse pass's lattice (then `lattice` is set).
+    RayGrid ray_grid(const arbor_render_request_v2 &request, std::unique_ptr<raycast::CoarseLattice> &lattice)
+    {
+        RayGrid grid;
+        if (request.pass == ARBOR_RENDER_PASS_COARSE) {
+            const double pixels = coarse_rate_.pixels_for(request, params().number("coarse-rate"),
+                                                          static_cast<double>(params().integer("coarse-pixels")));
+            lattice = std::make_unique<raycast::CoarseLattice>(request, pixels);
+            grid.width = static_cast<GLsizei>(lattice->columns());
+            grid.height = static_cast<GLsizei>(lattice->rows());
+            grid.base_x = lattice->x(0);
+            grid.base_y = lattice->y(0);
+            grid.spacing = pixels;
+            grid.subpixel_x = grid.subpixel_y = 0;
+            grid.coarse = true;
+            return grid;
+        }
+        grid.width = static_cast<GLsizei>(request.region_width);
+        grid.height = static_cast<GLsizei>(request.region_height);
+        grid.base_x = request.region_x;
+        grid.base_y = request.region_y;
+        if (const uint32_t sample = request.pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? request.sample_index : 0) {
+            const auto offset = raycast::subpixel(sample);
+            grid.subpixel_x = offset[0];
+            grid.subpixel_y = offset[1];
+            grid.shift = std::fmod(raycast::kSupersampleShift * sample, 1.0);
+        }
+        return grid;
+    }
+
     // The grid, block statistics and tables up to date with the request
-    // (on the calling thread, all cores), then the textures (GL thread).
+    // (on the calling thread, all cores); sync() uploads them to a context.
     const raycast::VoxelGrid &prepare(const arbor_render_request_v2 &request, const sdk::Task &task)
     {
         const raycast::VoxelGrid &g =
             grid_.update(*request.volume, request.volume_revision, request.labels, request.labels_revision, task);
         const arbor_tf_set &tf = *request.transfer_functions;
         raycast::require_functions(g, tf);
-        const bool grid_changed = grid_.generation() != uploaded_generation_;
+        const bool grid_changed = grid_.generation() != prepared_grid_;
         if (grid_changed) {
-            uploaded_generation_ = ~uint64_t{0};
+            prepared_grid_ = kNotUploaded;
             blocks_.build(g, task);
             boundaries_.sample(g);
-            gl_->run([&] {
-                if (grid_.values_generation() != uploaded_values_) { // not for new labels alone
-                    uploaded_values_ = ~uint64_t{0};
-                    textures_.upload_volume(g);
-                    uploaded_values_ = grid_.values_generation();
-                }
-                textures_.upload_labels(g);
-            });
         }
         const double step = params().number("sample-distance") * g.min_spacing;
         const double emphasis = params().number("boundary-emphasis");
@@ -215,10 +238,7 @@ private:
             coarse_table_.build(tf, step * raycast::kCoarseStep);
             occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz});
             boundaries_.build(table_, emphasis);
-            gl_->run([&] {
-                textures_.upload_blocks(occupancy_);
-                textures_.upload_tables(table_, coarse_table_, boundaries_, shading);
-            });
+            ++tables_generation_;
             occlusion_.clear();
             tf_revision_ = print;
             step_ = step;
@@ -228,23 +248,49 @@ private:
         const double occlusion = params().number("ambient-occlusion");
         if (occlusion > 0 && !occlusion_.built()) {
             occlusion_.build(g, table_, boundaries_);
-            gl_->run([&] { textures_.upload_occlusion(occlusion_); });
+            ++occlusion_generation_;
         }
         occlusion_strength_ = occlusion_.built() ? static_cast<float>(occlusion) : 0.0f;
-        uploaded_generation_ = grid_.generation();
+        prepared_grid_ = grid_.generation();
         return g;
     }
 
-    // One kind of draw over the grid, in bands of rows, then read back:
-    // colour and depth (rgba, depth), or what labels [base, base + 32)
-    // contributed, added to visibility.  False when cancelled.
-    bool cast(const arbor_render_request_v2 &request, const raycast::VoxelGrid &g, const RayGrid &grid,
-              const sdk::Task &task, uint32_t base, float *rgba, float *depth, std::vector<double> *visibility)
+    // The textures of context state s up to date with what prepare() made
+    // (s's context current).
+    void sync(ContextState &s, const raycast::VoxelGrid &g)
     {
-        const bool seen = visibility != nullptr;
+        if (s.grid != grid_.generation()) {
+            s.grid = kNotUploaded;
+            if (s.values != grid_.values_generation()) { // not for new labels alone
+                s.values = kNotUploaded;
+                s.textures.upload_volume(g);
+                s.values = grid_.values_generation();
+            }
+            s.textures.upload_labels(g);
+            s.grid = grid_.generation();
+        }
+        if (s.tables != tables_generation_) {
+            s.tables = kNotUploaded;
+            s.textures.upload_blocks(occupancy_);
+            s.textures.upload_tables(table_, coarse_table_, boundaries_, shading_);
+            s.tables = tables_generation_;
+        }
+        if (occlusion_.built() && s.occlusion != occlusion_generation_) {
+            s.occlusion = kNotUploaded;
+            s.textures.upload_occlusion(occlusion_);
+            s.occlusion = occlusion_generation_;
+        }
+    }
+
+    // One kind of draw over the grid, in bands of rows, into s's targets:
+    // colour and depth, or (seen) what labels [base, base + 32)
+    // contributed.  False when cancelled.
+    bool cast(ContextState &s, const arbor_render_request_v2 &request, const raycast::VoxelGrid &g,
+              const RayGrid &grid, const sdk::Task &task, uint32_t base, bool seen)
+    {
         const raycast::Shading shading = raycast::Shading::from(params());
         unsigned variant = 0;
-        if (textures_.labelled())
+        if (s.textures.labelled())
             variant |= kLabelled;
         if (shading.enabled)
             variant |= kShaded;
@@ -256,14 +302,15 @@ private:
             variant |= kOcclusion;
         if (seen)
             variant |= kVisibility;
-        const GLuint program = programs_.get(variant);
+        const GLuint program = s.programs.get(variant);
         glUseProgram(program);
         set_uniforms(program, request, g, grid, base, shading);
         const int targets = seen ? 8 : 2;
-        bind_targets(grid.width, grid.height, targets, seen);
+        bind_targets(s, grid.width, grid.height, targets, seen);
         glViewport(0, 0, grid.width, grid.height);
+        glDisable(GL_BLEND);
         glEnable(GL_SCISSOR_TEST);
-        glBindVertexArray(vao_.get());
+        glBindVertexArray(s.vao.get());
         const GLsizei bands = (grid.height + kBandRows - 1) / kBandRows;
         for (GLsizei b = 0; b < bands; ++b) {
             glScissor(0, b * kBandRows, grid.width, std::min(kBandRows, grid.height - b * kBandRows));
@@ -275,30 +322,85 @@ private:
         }
         glDisable(GL_SCISSOR_TEST);
         check_gl("ray casting");
-        glPixelStorei(GL_PACK_ALIGNMENT, 4);
-        if (seen) {
-            std::vector<float> read(4 * static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height));
-            for (int k = 0; k < 8; ++k) {
-                glReadBuffer(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k));
-                glReadPixels(0, 0, grid.width, grid.height, GL_RGBA, GL_FLOAT, read.data());
-                double sum[4] = {0, 0, 0, 0};
-                for (std::size_t p = 0; p < read.size(); p += 4)
-                    for (int c = 0; c < 4; ++c)
-                        sum[c] += read[p + static_cast<std::size_t>(c)];
-                for (int c = 0; c < 4; ++c) {
-                    const std::size_t label = base + 4 * static_cast<std::size_t>(k) + static_cast<std::size_t>(c);
-                    if (label < visibility->size())
-                        (*visibility)[label] += sum[c];
-                }
-            }
-        } else {
-            glReadBuffer(GL_COLOR_ATTACHMENT0);
-            glReadPixels(0, 0, grid.width, grid.height, GL_RGBA, GL_FLOAT, rgba);
-            glReadBuffer(GL_COLOR_ATTACHMENT1);
-            glReadPixels(0, 0, grid.width, grid.height, GL_RED, GL_FLOAT, depth);
-        }
-        check_gl("reading the image back");
         return true;
+    }
+
+    // The colour and depth cast() drew, read back.
+    static void read_image(const RayGrid &grid, float *rgba, float *depth)
+    {
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glReadBuffer(GL_COLOR_ATTACHMENT0);
+        glReadPixels(0, 0, grid.width, grid.height, GL_RGBA, GL_FLOAT, rgba);
+        glReadBuffer(GL_COLOR_ATTACHMENT1);
+        glReadPixels(0, 0, grid.width, grid.height, GL_RED, GL_FLOAT, depth);
+        check_gl("reading the image back");
+    }
+
+    // What labels [base, base + 32) contributed (cast() with seen), summed
+    // over the grid and added to visibility.
+    static void read_visibility(const RayGrid &grid, uint32_t base, std::vector<double> &visibility)
+    {
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        std::vector<float> read(4 * static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height));
+        for (int k = 0; k < 8; ++k) {
+            glReadBuffer(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(k));
+            glReadPixels(0, 0, grid.width, grid.height, GL_RGBA, GL_FLOAT, read.data());
+            double sum[4] = {0, 0, 0, 0};
+            for (std::size_t p = 0; p < read.size(); p += 4)
+                for (int c = 0; c < 4; ++c)
+                    sum[c] += read[p + static_cast<std::size_t>(c)];
+            for (int c = 0; c < 4; ++c) {
+                const std::size_t label = base + 4 * static_cast<std::size_t>(k) + static_cast<std::size_t>(c);
+                if (label < visibility.size())
+                    visibility[label] += sum[c];
+            }
+        }
+        check_gl("reading the visibility back");
+    }
+
+    // The rays cast() drew into the host's texture, over the request's
+    // region: copied, blended (supersample) or interpolated (coarse).
+    void present(ContextState &s, const arbor_render_request_v2 &request, const RayGrid &grid,
+                 const arbor_gl_target &target)
+    {
+        const GLuint program = s.programs.present();
+        glUseProgram(program);
+        const auto at = [&](const char *name) { return glGetUniformLocation(program, name); };
+        glUniform1i(at("u_rays"), 0);
+        glUniform2i(at("u_ray_count"), grid.width, grid.height);
+        glUniform2f(at("u_region"), static_cast<float>(request.region_x), static_cast<float>(request.region_y));
+        glUniform1i(at("u_coarse"), grid.coarse ? 1 : 0);
+        glUniform2f(at("u_lattice_base"), static_cast<float>(grid.base_x), static_cast<float>(grid.base_y));
+        glUniform1f(at("u_spacing"), static_cast<float>(grid.spacing));
+        const bool blend = request.pass == ARBOR_RENDER_PASS_SUPERSAMPLE;
+        glUniform1i(at("u_clamp"), blend ? 0 : 1);
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, s.targets[0].get());
+        glBindFramebuffer(GL_FRAMEBUFFER, s.output_fbo.get());
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target.texture, 0);
+        const GLenum buffer = GL_COLOR_ATTACHMENT0;
+        glDrawBuffers(1, &buffer);
+        if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            sdk::fail(ARBOR_ERROR_INVALID_ARGUMENT, "the host's texture cannot be rendered into (GL_RGBA8, "
+                                                    "GL_RGBA16F or GL_RGBA32F of the frame's size)");
+        glViewport(0, 0, static_cast<GLsizei>(target.width), static_cast<GLsizei>(target.height));
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(static_cast<GLint>(request.region_x), static_cast<GLint>(request.region_y),
+                  static_cast<GLsizei>(request.region_width), static_cast<GLsizei>(request.region_height));
+        if (blend) {
+            // out = out + (sample - out) / (sample_index + 1), as in arbor.renderer/2
+            const float weight = 1.0f / static_cast<float>(request.sample_index + 1);
+            glEnable(GL_BLEND);
+            glBlendColor(0, 0, 0, weight);
+            glBlendFunc(GL_CONSTANT_ALPHA, GL_ONE_MINUS_CONSTANT_ALPHA);
+        }
+        glBindVertexArray(s.vao.get());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glDisable(GL_BLEND);
+        glDisable(GL_SCISSOR_TEST);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        check_gl("writing the host's texture");
     }
 
     void set_uniforms(GLuint program, const arbor_render_request_v2 &request, const raycast::VoxelGrid &g,
@@ -349,28 +451,28 @@ private:
 
     // Colour and depth targets (or eight visibility targets) of at least
     // width x height on the framebuffer.
-    void bind_targets(GLsizei width, GLsizei height, int count, bool visibility)
+    static void bind_targets(ContextState &s, GLsizei width, GLsizei height, int count, bool visibility)
     {
-        if (width > target_width_ || height > target_height_) {
-            target_width_ = std::max(width, target_width_);
-            target_height_ = std::max(height, target_height_);
-            for (Texture &t : targets_)
+        if (width > s.target_width || height > s.target_height) {
+            s.target_width = std::max(width, s.target_width);
+            s.target_height = std::max(height, s.target_height);
+            for (Texture &t : s.targets)
                 t.reset();
         }
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+        glBindFramebuffer(GL_FRAMEBUFFER, s.fbo.get());
         GLenum buffers[8];
         for (int k = 0; k < 8; ++k) {
             // Targets 0 and 1: colour and depth; 2-9: visibility.
             const int index = visibility ? 2 + k : k;
             if (k < count) {
-                Texture &t = targets_[static_cast<std::size_t>(index)];
+                Texture &t = s.targets[static_cast<std::size_t>(index)];
                 if (!t) {
                     t = make_texture();
                     glBindTexture(GL_TEXTURE_2D, t.get());
                     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
                     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
                     const bool single = !visibility && k == 1;
-                    glTexImage2D(GL_TEXTURE_2D, 0, single ? GL_R32F : GL_RGBA32F, target_width_, target_height_, 0,
+                    glTexImage2D(GL_TEXTURE_2D, 0, single ? GL_R32F : GL_RGBA32F, s.target_width, s.target_height, 0,
                                  single ? GL_RED : GL_RGBA, GL_FLOAT, nullptr);
                     check_gl("allocating the image");
                 }
@@ -413,12 +515,8 @@ private:
     }
 
     std::unique_ptr<GlThread> gl_;
-    VertexArray vao_;
-    Framebuffer fbo_;
-    std::array<Texture, 10> targets_;
-    GLsizei target_width_ = 0, target_height_ = 0;
-    RaycastPrograms programs_;
-    VolumeTextures textures_;
+    std::unique_ptr<ContextState> own_;  // in gl_'s context
+    std::unique_ptr<ContextState> host_; // in the host's (arbor.renderer-gl/1)
 
     raycast::VoxelGridCache grid_;
     raycast::BlockStatistics blocks_;
@@ -429,8 +527,8 @@ private:
     float occlusion_strength_ = 0.0f;
     raycast::Shading shading_;
     raycast::CoarseRate coarse_rate_;
-    uint64_t uploaded_generation_ = ~uint64_t{0};
-    uint64_t uploaded_values_ = ~uint64_t{0};
+    uint64_t prepared_grid_ = kNotUploaded; // the grid generation blocks_ and boundaries_ were built for
+    uint64_t tables_generation_ = 0, occlusion_generation_ = 0;
     uint64_t tf_revision_ = 0;
     double step_ = -1.0, emphasis_ = -1.0;
 };

@@ -1,6 +1,7 @@
 #include "raycast_programs.hpp"
 #include "shader_sources.hpp"
 
+#include <initializer_list>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
@@ -50,6 +51,37 @@ GLuint compile(GLenum type, const std::string &text, const char *name)
     return shader;
 }
 
+// raycast.vert with `fragment`, under `header`; `outputs` name the
+// fragment outputs at locations 0, 1, ...
+Program link(const std::string &header, const char *fragment, std::initializer_list<const char *> outputs)
+{
+    const GLuint vs = compile(GL_VERTEX_SHADER, header + source("shaders/raycast.vert"), "raycast.vert");
+    GLuint fs = 0;
+    try {
+        fs = compile(GL_FRAGMENT_SHADER, header + source((std::string("shaders/") + fragment).c_str()), fragment);
+    } catch (...) {
+        glDeleteShader(vs);
+        throw;
+    }
+    Program program(glCreateProgram());
+    glAttachShader(program.get(), vs);
+    glAttachShader(program.get(), fs);
+    GLuint location = 0;
+    for (const char *output : outputs)
+        glBindFragDataLocation(program.get(), location++, output);
+    glLinkProgram(program.get());
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[4096] = {};
+        glGetProgramInfoLog(program.get(), sizeof log, nullptr, log);
+        throw std::runtime_error(std::string(fragment) + " does not link: " + log);
+    }
+    return program;
+}
+
 } // namespace
 
 GLuint RaycastPrograms::get(unsigned variant)
@@ -64,36 +96,18 @@ GLuint RaycastPrograms::get(unsigned variant)
         if (variant & bit)
             header += std::string("#define ") + name + "\n";
     header += "#line 1\n";
-    const GLuint vs = compile(GL_VERTEX_SHADER, header + source("shaders/raycast.vert"), "raycast.vert");
-    GLuint fs = 0;
-    try {
-        fs = compile(GL_FRAGMENT_SHADER, header + source("shaders/raycast.frag"), "raycast.frag");
-    } catch (...) {
-        glDeleteShader(vs);
-        throw;
-    }
-    Program program(glCreateProgram());
-    glAttachShader(program.get(), vs);
-    glAttachShader(program.get(), fs);
-    if (variant & kVisibility) {
-        glBindFragDataLocation(program.get(), 0, "o_visibility");
-    } else {
-        glBindFragDataLocation(program.get(), 0, "o_rgba");
-        glBindFragDataLocation(program.get(), 1, "o_depth");
-    }
-    glLinkProgram(program.get());
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[4096] = {};
-        glGetProgramInfoLog(program.get(), sizeof log, nullptr, log);
-        throw std::runtime_error(std::string("the ray casting program does not link: ") + log);
-    }
+    Program program = (variant & kVisibility) ? link(header, "raycast.frag", {"o_visibility"})
+                                              : link(header, "raycast.frag", {"o_rgba", "o_depth"});
     const GLuint name = program.get();
     programs_.emplace(variant, std::move(program));
     return name;
+}
+
+GLuint RaycastPrograms::present()
+{
+    if (!present_)
+        present_ = link("#version 330 core\n#line 1\n", "present.frag", {"o_rgba"});
+    return present_.get();
 }
 
 } // namespace arbor::glraycast

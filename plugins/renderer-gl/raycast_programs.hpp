@@ -1,6 +1,7 @@
 // raycast_programs.hpp - the ray casting shader (resources/shaders,
 // embedded at build time) compiled once per variant: which of LABELLED,
-// SHADED, BOUNDARY, JITTER, VISIBILITY and OCCLUSION it is built with.
+// SHADED, BOUNDARY, JITTER, VISIBILITY and OCCLUSION it is built with;
+// and the present program (arbor.renderer-gl/1).
 #pragma once
 
 #include "gl_objects.hpp"
@@ -23,10 +24,17 @@ class RaycastPrograms {
 public:
     // The program of this variant, compiled and linked on first use.
     GLuint get(unsigned variant);
-    void clear() { programs_.clear(); }
+    // The program that writes a pass's rays into the host's frame texture.
+    GLuint present();
+    void clear()
+    {
+        programs_.clear();
+        present_.reset();
+    }
 
 private:
     std::map<unsigned, Program> programs_;
+    Program present_;
 };
 
 } // namespace arbor::glraycast

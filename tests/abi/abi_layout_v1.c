@@ -63,6 +63,12 @@ _Static_assert(sizeof(arbor_filter_v1) == 16, "size of arbor_filter_v1 changed")
 _Static_assert(_Alignof(arbor_filter_v1) == 8, "alignment of arbor_filter_v1 changed");
 _Static_assert(offsetof(arbor_filter_v1, output_type) == 0, "offset of arbor_filter_v1.output_type changed");
 _Static_assert(offsetof(arbor_filter_v1, apply) == 8, "offset of arbor_filter_v1.apply changed");
+_Static_assert(sizeof(arbor_gl_target) == 16, "size of arbor_gl_target changed");
+_Static_assert(_Alignof(arbor_gl_target) == 4, "alignment of arbor_gl_target changed");
+_Static_assert(offsetof(arbor_gl_target, struct_size) == 0, "offset of arbor_gl_target.struct_size changed");
+_Static_assert(offsetof(arbor_gl_target, texture) == 4, "offset of arbor_gl_target.texture changed");
+_Static_assert(offsetof(arbor_gl_target, width) == 8, "offset of arbor_gl_target.width changed");
+_Static_assert(offsetof(arbor_gl_target, height) == 12, "offset of arbor_gl_target.height changed");
 _Static_assert(sizeof(arbor_host) == 56, "size of arbor_host changed");
 _Static_assert(_Alignof(arbor_host) == 8, "alignment of arbor_host changed");
 _Static_assert(offsetof(arbor_host, struct_size) == 0, "offset of arbor_host.struct_size changed");
@@ -217,6 +223,12 @@ _Static_assert(offsetof(arbor_render_request_v2, region_width) == 96, "offset of
 _Static_assert(offsetof(arbor_render_request_v2, region_height) == 100, "offset of arbor_render_request_v2.region_height changed");
 _Static_assert(offsetof(arbor_render_request_v2, sample_index) == 104, "offset of arbor_render_request_v2.sample_index changed");
 _Static_assert(offsetof(arbor_render_request_v2, reserved0) == 108, "offset of arbor_render_request_v2.reserved0 changed");
+_Static_assert(sizeof(arbor_renderer_gl_v1) == 24, "size of arbor_renderer_gl_v1 changed");
+_Static_assert(_Alignof(arbor_renderer_gl_v1) == 8, "alignment of arbor_renderer_gl_v1 changed");
+_Static_assert(offsetof(arbor_renderer_gl_v1, struct_size) == 0, "offset of arbor_renderer_gl_v1.struct_size changed");
+_Static_assert(offsetof(arbor_renderer_gl_v1, reserved0) == 4, "offset of arbor_renderer_gl_v1.reserved0 changed");
+_Static_assert(offsetof(arbor_renderer_gl_v1, render_gl) == 8, "offset of arbor_renderer_gl_v1.render_gl changed");
+_Static_assert(offsetof(arbor_renderer_gl_v1, release_gl) == 16, "offset of arbor_renderer_gl_v1.release_gl changed");
 _Static_assert(sizeof(arbor_renderer_v1) == 8, "size of arbor_renderer_v1 changed");
 _Static_assert(_Alignof(arbor_renderer_v1) == 8, "alignment of arbor_renderer_v1 changed");
 _Static_assert(offsetof(arbor_renderer_v1, render) == 0, "offset of arbor_renderer_v1.render changed");
@@ -337,6 +349,7 @@ int main(void)
         {"ARBOR_MEASURE_COMPACTNESS", ARBOR_MEASURE_COMPACTNESS, "compactness"},
         {"ARBOR_INTERFACE_RENDERER_2", ARBOR_INTERFACE_RENDERER_2, "arbor.renderer/2"},
         {"ARBOR_INTERFACE_RENDER_DEVICE", ARBOR_INTERFACE_RENDER_DEVICE, "arbor.render-device/1"},
+        {"ARBOR_INTERFACE_RENDERER_GL", ARBOR_INTERFACE_RENDERER_GL, "arbor.renderer-gl/1"},
     };
     int failures = 0;
     size_t i;

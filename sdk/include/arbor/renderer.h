@@ -180,4 +180,57 @@ typedef struct arbor_render_device_v1 {
 } arbor_render_device_v1;
 #define ARBOR_MIN_SIZE_arbor_render_device_v1 ARBOR_SIZE_THROUGH(arbor_render_device_v1, describe) /* through ABI 1.2 */
 
+/* ------------------------------------------------------------------------
+ * arbor.renderer-gl/1 (since ABI 1.5): rendering into the host's OpenGL
+ * context, so that a workstation shows a frame without reading it back to
+ * the CPU and uploading it again.  Optional, for renderers that draw with
+ * OpenGL and also offer arbor.renderer/2 (which stays the way to images on
+ * the CPU: previews, visibility, files).  The host uses it only for plugins
+ * loaded into its own process.
+ *
+ * Context.  The host calls render_gl on a thread where it has made current
+ * an OpenGL 3.3 (or later) core-profile context that it keeps for this
+ * instance's rendering: the same context at every call, its state (bound
+ * objects, program, viewport, enables) the plugin's to change and keep.
+ * The context shares objects (textures) with the one that shows the
+ * frames.  Before destroying the instance, the host calls release_gl with
+ * that context current, and the plugin deletes the GL objects it made in
+ * it; an instance destroyed without release_gl leaks them, never touches
+ * GL from its destroy.
+ *
+ * Target.  `texture` names a GL_TEXTURE_2D of frame_width x frame_height
+ * texels, internal format GL_RGBA8, GL_RGBA16F or GL_RGBA32F, made by the
+ * host.  Texel (x, y) is frame pixel (x, y), row 0 the top row as in
+ * arbor_image, holding what *out of arbor.renderer/2 would (straight colour,
+ * the background composited).  A call writes the request's region of it by
+ * the pass's rule (SUPERSAMPLE blends into what the texture holds) and
+ * leaves the other texels.  It returns once the GL commands are issued; the
+ * host finishes or fences before another context reads the texture.  No
+ * depth and no visibility are produced.  Cancellation: each texel of the
+ * region holds its contents before the call or its final value.
+ * ------------------------------------------------------------------------ */
+#define ARBOR_INTERFACE_RENDERER_GL "arbor.renderer-gl/1"
+
+typedef struct arbor_gl_target {
+    uint32_t struct_size;
+    uint32_t texture;      /* a GLuint of the current context's share group */
+    uint32_t width;        /* the texture's size: the request's frame */
+    uint32_t height;
+} arbor_gl_target;
+#define ARBOR_MIN_SIZE_arbor_gl_target ARBOR_SIZE_THROUGH(arbor_gl_target, height) /* through ABI 1.5 */
+
+typedef struct arbor_renderer_gl_v1 {
+    uint32_t struct_size;
+    uint32_t reserved0;
+    /* Render `request->pass` of the request's region into the target.
+     * [instance] [borrowed: request and target until return] */
+    arbor_status (*render_gl)(arbor_plugin *plugin, const arbor_render_request_v2 *request,
+                              const arbor_gl_target *target, arbor_task *task);
+    /* Delete the GL objects made in the host's context (current now);
+     * render_gl may be called again afterwards and makes them anew.
+     * [instance] */
+    arbor_status (*release_gl)(arbor_plugin *plugin);
+} arbor_renderer_gl_v1;
+#define ARBOR_MIN_SIZE_arbor_renderer_gl_v1 ARBOR_SIZE_THROUGH(arbor_renderer_gl_v1, release_gl) /* through ABI 1.5 */
+
 #endif /* ARBOR_RENDERER_H */

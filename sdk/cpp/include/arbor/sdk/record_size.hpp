@@ -29,6 +29,8 @@ template <> constexpr std::size_t min_record_size<arbor_render_request_v2>() { r
 template <> constexpr std::size_t min_record_size<arbor_renderer_v2>() { return ARBOR_MIN_SIZE(arbor_renderer_v2); }
 template <> constexpr std::size_t min_record_size<arbor_render_device>() { return ARBOR_MIN_SIZE(arbor_render_device); }
 template <> constexpr std::size_t min_record_size<arbor_render_device_v1>() { return ARBOR_MIN_SIZE(arbor_render_device_v1); }
+template <> constexpr std::size_t min_record_size<arbor_gl_target>() { return ARBOR_MIN_SIZE(arbor_gl_target); }
+template <> constexpr std::size_t min_record_size<arbor_renderer_gl_v1>() { return ARBOR_MIN_SIZE(arbor_renderer_gl_v1); }
 template <> constexpr std::size_t min_record_size<arbor_measure_rows>() { return ARBOR_MIN_SIZE(arbor_measure_rows); }
 template <> constexpr std::size_t min_record_size<arbor_tf_request>() { return ARBOR_MIN_SIZE(arbor_tf_request); }
 template <> constexpr std::size_t min_record_size<arbor_tf_set>() { return ARBOR_MIN_SIZE(arbor_tf_set); }

@@ -2,6 +2,8 @@
 // Derive and implement render (arbor.renderer/1: full frames), or pass
 // Interface::v2 and implement render_region (arbor.renderer/2: tiles,
 // passes, revisions; then /1 is offered too, as one full-frame FULL pass).
+// An OpenGL renderer may also call offer_gl() and implement render_gl and
+// release_gl (arbor.renderer-gl/1: into a texture of the host's context).
 // The request's records (volume, labels, transfer functions, camera, the
 // region) and the output image are checked here.
 #pragma once
@@ -28,6 +30,9 @@ public:
         table2_.render = &c_render2;
         device_table_.struct_size = sizeof device_table_;
         device_table_.describe = &c_describe;
+        gl_table_.struct_size = sizeof gl_table_;
+        gl_table_.render_gl = &c_render_gl;
+        gl_table_.release_gl = &c_release_gl;
     }
 
     // arbor.renderer/1: the whole frame, full quality.  A v2 renderer need
@@ -57,7 +62,19 @@ public:
         fail(ARBOR_ERROR_UNSUPPORTED, "this renderer offers arbor.renderer/1 only");
     }
 
+    // arbor.renderer-gl/1: request.pass of the region into the target
+    // texture, with the host's context current on the calling thread.
+    virtual void render_gl(const arbor_render_request_v2 &, const arbor_gl_target &, const Task &)
+    {
+        fail(ARBOR_ERROR_UNSUPPORTED, "this renderer does not render into the host's OpenGL context");
+    }
+    // Deletes what render_gl made in the host's context (current now).
+    virtual void release_gl() {}
+
 protected:
+    // Offer arbor.renderer-gl/1 (call in the constructor of a v2 renderer).
+    void offer_gl() { gl_offered_ = true; }
+
     // arbor.render-device/1: say what this instance renders on.  Either
     // call set_device in the constructor, or call offer_device there and
     // override find_device to find it out when the host first asks (it
@@ -79,6 +96,8 @@ protected:
             return &table_;
         if (id == ARBOR_INTERFACE_RENDERER_2 && offered_ == Interface::v2)
             return &table2_;
+        if (id == ARBOR_INTERFACE_RENDERER_GL && offered_ == Interface::v2 && gl_offered_)
+            return &gl_table_;
         return Instance::find_interface(id);
     }
 
@@ -144,18 +163,44 @@ private:
             require_record(request, "render request");
             check_image(out);
             check_request(*request);
-            const arbor_render_request_v2 &r = *request;
-            if (r.pass > ARBOR_RENDER_PASS_SUPERSAMPLE)
-                fail(ARBOR_ERROR_INVALID_ARGUMENT, "unknown render pass " + std::to_string(r.pass));
-            if (r.pass == ARBOR_RENDER_PASS_SUPERSAMPLE && r.sample_index == 0)
-                fail(ARBOR_ERROR_INVALID_ARGUMENT, "a supersample pass counts its samples from 1");
-            if (r.frame_width == 0 || r.frame_height == 0 || r.region_width != out->width ||
-                r.region_height != out->height || r.region_x >= r.frame_width || r.region_y >= r.frame_height ||
-                r.region_width > r.frame_width - r.region_x || r.region_height > r.frame_height - r.region_y)
-                fail(ARBOR_ERROR_INVALID_ARGUMENT, "the region is empty, lies outside the frame or differs from the "
-                                                   "image's size");
-            static_cast<Renderer &>(self).render_region(r, *out, Task(task));
+            check_passes(*request);
+            if (request->region_width != out->width || request->region_height != out->height)
+                fail(ARBOR_ERROR_INVALID_ARGUMENT, "the region differs from the image's size");
+            static_cast<Renderer &>(self).render_region(*request, *out, Task(task));
         });
+    }
+
+    // The pass and the region of an arbor.renderer/2 request.
+    static void check_passes(const arbor_render_request_v2 &r)
+    {
+        if (r.pass > ARBOR_RENDER_PASS_SUPERSAMPLE)
+            fail(ARBOR_ERROR_INVALID_ARGUMENT, "unknown render pass " + std::to_string(r.pass));
+        if (r.pass == ARBOR_RENDER_PASS_SUPERSAMPLE && r.sample_index == 0)
+            fail(ARBOR_ERROR_INVALID_ARGUMENT, "a supersample pass counts its samples from 1");
+        if (r.frame_width == 0 || r.frame_height == 0 || r.region_width == 0 || r.region_height == 0 ||
+            r.region_x >= r.frame_width || r.region_y >= r.frame_height ||
+            r.region_width > r.frame_width - r.region_x || r.region_height > r.frame_height - r.region_y)
+            fail(ARBOR_ERROR_INVALID_ARGUMENT, "the region is empty or lies outside the frame");
+    }
+
+    static arbor_status c_render_gl(arbor_plugin *plugin, const arbor_render_request_v2 *request,
+                                    const arbor_gl_target *target, arbor_task *task)
+    {
+        return guarded(plugin, [&](Instance &self) {
+            require_record(request, "render request");
+            require_record(target, "OpenGL target");
+            check_request(*request);
+            check_passes(*request);
+            if (target->texture == 0 || target->width != request->frame_width ||
+                target->height != request->frame_height)
+                fail(ARBOR_ERROR_INVALID_ARGUMENT, "the OpenGL target names no texture or is not the frame's size");
+            static_cast<Renderer &>(self).render_gl(*request, *target, Task(task));
+        });
+    }
+
+    static arbor_status c_release_gl(arbor_plugin *plugin)
+    {
+        return guarded(plugin, [&](Instance &self) { static_cast<Renderer &>(self).release_gl(); });
     }
 
     static arbor_status c_describe(const arbor_plugin *plugin, arbor_render_device *out)
@@ -174,10 +219,11 @@ private:
     Interface offered_;
     arbor_device_kind device_kind_ = 0;
     std::string device_name_;
-    bool device_offered_ = false;
+    bool device_offered_ = false, gl_offered_ = false;
     arbor_render_device_v1 device_table_{};
     arbor_renderer_v1 table_{};
     arbor_renderer_v2 table2_{};
+    arbor_renderer_gl_v1 gl_table_{};
 };
 
 } // namespace arbor::sdk
