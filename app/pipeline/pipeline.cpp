@@ -316,36 +316,46 @@ arbor_camera Pipeline::camera_for(const Document &d, const FilterResult &filtere
     return orbit_camera(filtered.volume->geometry(), orbit);
 }
 
-void Pipeline::render_pass(RenderedImage &frame, const FramePass &pass, std::stop_token stop)
+std::unique_ptr<PassScene> Pipeline::pass_scene(std::stop_token stop)
 {
-    const auto tf = run<Stage::TransferFunctions>();
-    const auto labels = run<Stage::Labels>();
-    const auto filtered = run<Stage::Filter>();
+    auto p = std::make_unique<PassScene>();
+    p->tf = run<Stage::TransferFunctions>();
+    p->labels = run<Stage::Labels>();
+    p->filtered = run<Stage::Filter>();
     const bool current = is_current(Stage::Render);
     const auto last = latest<Stage::Render>();
     const Document d = document();
     throw_if_stopped(stop);
-    std::shared_ptr<const TransferFunctions> functions = tf->functions;
+    p->functions = p->tf->functions;
     if (current)
-        functions = last->functions;
-    else if (last && last->balance && last->balance->scale.size() == functions->branch_count())
-        functions = functions->with_optical_depth(last->balance->scale);
+        p->functions = last->functions;
+    else if (last && last->balance && last->balance->scale.size() == p->functions->branch_count())
+        p->functions = p->functions->with_optical_depth(last->balance->scale);
     if (!current)
-        functions = styled(functions, tf->depiction->cut->tree->record(), d.view.branch_styles);
-    const arbor_camera camera = camera_for(d, *filtered);
-    RenderScene scene(*filtered, *labels, functions->branch_count(), d.view.background);
-    scene.request.transfer_functions = &functions->record();
-    scene.request.camera = &camera;
+        p->functions = styled(p->functions, p->tf->depiction->cut->tree->record(), d.view.branch_styles);
+    p->camera = camera_for(d, *p->filtered);
+    p->scene = std::make_unique<RenderScene>(*p->filtered, *p->labels, p->functions->branch_count(), d.view.background);
+    p->scene->request.transfer_functions = &p->functions->record();
+    p->scene->request.camera = &p->camera;
+    p->renderer = d.view.renderer;
+    p->width = d.view.width;
+    p->height = d.view.height;
+    return p;
+}
+
+void Pipeline::render_pass(RenderedImage &frame, const FramePass &pass, std::stop_token stop)
+{
+    const std::unique_ptr<PassScene> p = pass_scene(stop);
     Slot &slot = *slots_[index_of(Stage::Render)];
     std::lock_guard busy(slot.busy);
-    PluginSlot::Lease renderer = slot.plugins.lease(d.view.renderer, nullptr);
-    if (frame.width != d.view.width || frame.height != d.view.height || pass.pass != ARBOR_RENDER_PASS_SUPERSAMPLE) {
-        frame.width = d.view.width;
-        frame.height = d.view.height;
+    PluginSlot::Lease renderer = slot.plugins.lease(p->renderer, nullptr);
+    if (frame.width != p->width || frame.height != p->height || pass.pass != ARBOR_RENDER_PASS_SUPERSAMPLE) {
+        frame.width = p->width;
+        frame.height = p->height;
         frame.rgba.assign(std::size_t{frame.width} * frame.height * 4, 0.0f);
         frame.depth.assign(std::size_t{frame.width} * frame.height, std::numeric_limits<float>::infinity());
     }
-    render_region(*renderer, scene.request, frame, {}, pass, nullptr, std::move(stop));
+    render_region(*renderer, p->scene->request, frame, {}, pass, nullptr, std::move(stop));
 }
 
 std::shared_ptr<const void> Pipeline::latest_result(Stage stage) const

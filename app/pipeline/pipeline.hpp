@@ -23,6 +23,7 @@
 
 #include "document.hpp"
 #include "job.hpp"
+#include "render_scene.hpp"
 #include "plugin_catalog.hpp"
 #include "stage_graph.hpp"
 #include "stage_results.hpp"
@@ -39,6 +40,19 @@
 #include <vector>
 
 namespace arbor::pipeline {
+
+// One pass of the document's view, as Pipeline::render_pass renders it: the
+// request (scene->request) and everything it points into.
+struct PassScene {
+    std::shared_ptr<const TransferFunctionsResult> tf;
+    std::shared_ptr<const LabelsResult> labels;
+    std::shared_ptr<const FilterResult> filtered;
+    std::shared_ptr<const TransferFunctions> functions;
+    arbor_camera camera{};
+    std::unique_ptr<RenderScene> scene;
+    PluginSetting renderer;
+    uint32_t width = 0, height = 0; // the view
+};
 
 struct PipelineOptions {
     uint64_t max_volume_bytes = uint64_t{1} << 34;
@@ -121,6 +135,10 @@ public:
     // `frame` is resized to the view (and must hold the previous pass for
     // SUPERSAMPLE).  Throws Cancelled when stopped.
     void render_pass(RenderedImage &frame, const FramePass &pass, std::stop_token stop = {});
+    // What render_pass renders (the same functions, camera and view size),
+    // for a front that renders it with a renderer instance of its own (into
+    // its OpenGL context).  Throws Cancelled when stopped.
+    std::unique_ptr<PassScene> pass_scene(std::stop_token stop = {});
     // A pass that needs no topology: the filtered volume (imported and
     // filtered first, if stale) with one transfer function from its values
     // (preview_functions.hpp), no labels, from the document's orbit; for

@@ -4,6 +4,8 @@
 #include "core/stopwatch.hpp"
 #include "core/thread_priority.hpp"
 
+#include <algorithm>
+
 namespace arbor::pipeline {
 
 namespace {
@@ -17,7 +19,7 @@ uint32_t rank(arbor_render_pass pass, uint32_t samples)
 } // namespace
 
 ProgressiveView::ProgressiveView(Pipeline &pipeline, Options options)
-    : pipeline_(pipeline), options_(options), worker_([this] { loop(); })
+    : pipeline_(pipeline), options_(std::move(options)), gl_renderers_(pipeline.catalog()), worker_([this] { loop(); })
 {
 }
 
@@ -97,9 +99,63 @@ void ProgressiveView::publish(std::shared_ptr<const Frame> frame)
         tell();
 }
 
+bool ProgressiveView::draw_gl(Frame &frame, const FramePass &pass, std::stop_token stop)
+{
+    if (!options_.surface)
+        return false;
+    const PluginSetting setting = pipeline_.document().view.renderer;
+    auto known = draws_gl_.find(setting.id);
+    if (known == draws_gl_.end())
+        known = draws_gl_.emplace(setting.id, renders_into_gl(*gl_renderers_.lease(setting, nullptr))).first;
+    if (!known->second)
+        return false;
+    const std::unique_ptr<PassScene> p = pipeline_.pass_scene(stop);
+    PluginSlot::Lease renderer = gl_renderers_.lease(p->renderer, nullptr);
+    if (std::find(drew_gl_.begin(), drew_gl_.end(), p->renderer) == drew_gl_.end())
+        drew_gl_.push_back(p->renderer);
+    if (pass.pass == ARBOR_RENDER_PASS_SUPERSAMPLE && !canvas_full_)
+        return false; // the canvas does not hold the full pass to refine
+    arbor_render_request request = p->scene->request;
+    // Shown as drawn: the background composited, as an image's is when a
+    // front shows it.
+    request.background[3] = 1.0f;
+    canvas_full_ = false;
+    render_gl(*renderer, request, options_.surface->canvas(p->width, p->height), {}, pass, nullptr, std::move(stop));
+    canvas_full_ = pass.pass != ARBOR_RENDER_PASS_COARSE;
+    frame.gpu = options_.surface->snapshot();
+    return true;
+}
+
+// What the renderers made in the surface's context, deleted there (it is
+// current on this thread) before the instances go.
+void ProgressiveView::release_gl_renderers()
+{
+    for (const PluginSetting &setting : drew_gl_) {
+        try {
+            release_gl(*gl_renderers_.lease(setting, nullptr));
+        } catch (const std::exception &) {
+            // A renderer that cannot release leaks its objects into a context that ends with the view.
+        }
+    }
+    drew_gl_.clear();
+}
+
 void ProgressiveView::loop()
 {
     lower_thread_priority(options_.worker_nice);
+    struct Surface { // current on this thread while the loop runs
+        FrameSurface *surface;
+        ProgressiveView &view;
+        ~Surface()
+        {
+            if (!surface)
+                return;
+            view.release_gl_renderers();
+            surface->release_current();
+        }
+    } current{options_.surface.get(), *this};
+    if (options_.surface)
+        options_.surface->make_current();
     uint64_t done = 0;            // the touch the latest frame answers
     uint32_t refinement = 0;      // passes after the coarse one for it: 1 full, then supersamples
     RenderedImage image;
@@ -145,7 +201,7 @@ void ProgressiveView::loop()
                 frame->preview = options_.preview && !pipeline_.is_current(Stage::ContourTree);
                 if (frame->preview)
                     pipeline_.preview_pass(image, {ARBOR_RENDER_PASS_COARSE, 0, 0}, stop);
-                else
+                else if (!draw_gl(*frame, {ARBOR_RENDER_PASS_COARSE, 0, 0}, stop))
                     pipeline_.render_pass(image, {ARBOR_RENDER_PASS_COARSE, 0, 0}, stop);
                 done = touch;
                 refinement = 0;
@@ -156,11 +212,14 @@ void ProgressiveView::loop()
                 const auto render = std::static_pointer_cast<const RenderResult>(job->wait(stop));
                 image = render->image;
                 frame->pass = ARBOR_RENDER_PASS_FULL;
+                // Drawn again into the surface: balanced and framed as the render was.
+                draw_gl(*frame, {ARBOR_RENDER_PASS_FULL, 0, 0}, stop);
                 refinement = 1;
             } else {
                 frame->pass = ARBOR_RENDER_PASS_SUPERSAMPLE;
                 frame->samples = refinement;
-                pipeline_.render_pass(image, {ARBOR_RENDER_PASS_SUPERSAMPLE, refinement, 0}, stop);
+                if (!draw_gl(*frame, {ARBOR_RENDER_PASS_SUPERSAMPLE, refinement, 0}, stop))
+                    pipeline_.render_pass(image, {ARBOR_RENDER_PASS_SUPERSAMPLE, refinement, 0}, stop);
                 ++refinement;
             }
         } catch (const Cancelled &) {
@@ -173,7 +232,10 @@ void ProgressiveView::loop()
             continue;
         }
         frame->seconds = watch.lap();
-        frame->image = image;
+        // A GPU frame of the full render keeps its image too (same view):
+        // depth for picking, visibility.  A coarse one has none.
+        if (!frame->gpu || frame->pass != ARBOR_RENDER_PASS_COARSE)
+            frame->image = image;
         publish(std::move(frame));
     }
 }

@@ -8,13 +8,23 @@
 // pipeline must outlive the view.  A touch does not cancel the stages
 // before the render (a new tree after a filter change is computed to the
 // end); it cancels the pass and the full render.
+//
+// With a FrameSurface, a renderer that draws into the host's OpenGL
+// context (arbor.renderer-gl/1) draws the coarse, full and supersample
+// passes into the surface's canvas with an instance of its own, on this
+// view's thread, and a frame carries a texture instead of an image (the
+// pipeline's full render still runs first: it balances and frames the
+// view).  Other renderers, and previews, give images as without one.
 #pragma once
 
+#include "frame_surface.hpp"
 #include "pipeline.hpp"
+#include "plugin_slot.hpp"
 
 #include <chrono>
 #include <condition_variable>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -30,6 +40,7 @@ public:
         // While the contour tree is computed, a preview from the values
         // (Pipeline::preview_pass) instead of waiting for it.
         bool preview = false;
+        std::shared_ptr<FrameSurface> surface = nullptr; // null: frames are images
     };
     struct Frame {
         RenderedImage image;
@@ -40,6 +51,9 @@ public:
         // Rendered from the values alone while the contour tree was being
         // computed (Pipeline::preview_pass); the topology's frame follows.
         bool preview = false;
+        // Drawn into the surface: the texture to show (`image` is then the
+        // full render's, for depth and visibility, or empty for a coarse pass).
+        std::shared_ptr<const GlFrame> gpu;
     };
 
     ProgressiveView(Pipeline &pipeline, Options options);
@@ -69,6 +83,10 @@ public:
 private:
     void loop();
     void publish(std::shared_ptr<const Frame> frame);
+    // The pass into the surface's canvas, when there is a surface and the
+    // document's renderer draws into it; false (nothing drawn) otherwise.
+    bool draw_gl(Frame &frame, const FramePass &pass, std::stop_token stop);
+    void release_gl_renderers();
 
     Pipeline &pipeline_;
     Options options_;
@@ -82,6 +100,12 @@ private:
     std::shared_ptr<const Frame> latest_;
     std::function<void()> on_frame_;
     std::string error_;
+    // The renderers that drew into the surface (this thread's own), and
+    // whether the canvas holds the full pass a supersample pass refines.
+    PluginSlot gl_renderers_;
+    std::map<std::string, bool> draws_gl_; // per renderer id: does it offer arbor.renderer-gl/1?
+    std::vector<PluginSetting> drew_gl_;
+    bool canvas_full_ = false;
     std::thread worker_;
 };
 

@@ -23,6 +23,7 @@ const std::map<std::string, std::pair<std::size_t, std::size_t>> &commands()
         {"screenshot", {1, 1}},    {"screenshot-window", {1, 1}}, {"save-session", {1, 1}},
         {"export-labels", {1, 1}}, {"export-tf", {1, 1}},   {"quit", {0, 0}},
         {"pacs-search", {1, 5}},   {"pacs-open", {1, 1}},    {"expect-error", {1, 1}},
+        {"expect-frames", {1, 1}},
     };
     return table;
 }
@@ -188,6 +189,19 @@ void ScriptRunner::run(const ScriptLine &line, Workstation &ws, ScriptWindow &wi
         ws.screenshot(a[0]);
     else if (c == "screenshot-window")
         window.capture_window(a[0]);
+    else if (c == "expect-frames") {
+        // A test's step: where the 3D view's latest frame was drawn.
+        if (a[0] != "gpu" && a[0] != "image")
+            throw std::runtime_error("'" + a[0] + "' is not a kind of frame (gpu or image)");
+        const auto frame = ws.volume_view().latest();
+        if (!frame)
+            throw std::runtime_error("the 3D view has no frame");
+        const char *kind = frame->gpu ? "gpu" : "image";
+        if (a[0] != kind)
+            throw std::runtime_error(std::string("the 3D view's frame is ") +
+                                     (frame->gpu ? "drawn on the GPU" : "an image from the CPU") + ", not " +
+                                     (a[0] == "gpu" ? "drawn on the GPU" : "an image"));
+    }
     else if (c == "save-session")
         ws.save_session(a[0]);
     else if (c == "export-labels")

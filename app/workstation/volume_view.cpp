@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 namespace arbor::workstation {
 
@@ -71,7 +72,11 @@ void VolumeView::draw(Workstation &ws)
     const uint32_t w = static_cast<uint32_t>(std::max(16.0f, avail.x)), h = static_cast<uint32_t>(std::max(16.0f, avail.y));
     ws.set_viewport(w, h);
     const auto frame = ws.volume_view().latest();
-    if (frame && frame.get() != shown_ && frame->image.width > 0) {
+    if (frame && frame->gpu) {
+        drawn_ = frame;
+        shown_ = frame.get();
+    } else if (frame && frame.get() != shown_ && frame->image.width > 0) {
+        drawn_.reset();
         const auto &bg = ws.document().view.background;
         const float back[3] = {static_cast<float>(bg[0]), static_cast<float>(bg[1]), static_cast<float>(bg[2])};
         to_rgba8(frame->image.rgba, back, rgba_);
@@ -92,8 +97,15 @@ void VolumeView::draw(Workstation &ws)
     const ImVec2 hi{lo.x + w, lo.y + h};
     ImDrawList *dl = ImGui::GetWindowDrawList();
     // The frame keeps its own size while a new one for the new viewport renders.
-    ImGui::Image(texture_.imgui_id(), ImVec2(static_cast<float>(texture_.width()), static_cast<float>(texture_.height())),
-                 ImVec2(0, 0), ImVec2(texture_.u_max(), texture_.v_max()));
+    if (drawn_) {
+        const GlFrame &g = *drawn_->gpu;
+        ImGui::Image(reinterpret_cast<void *>(static_cast<intptr_t>(g.texture)),
+                     ImVec2(static_cast<float>(g.width), static_cast<float>(g.height)));
+    } else {
+        ImGui::Image(texture_.imgui_id(),
+                     ImVec2(static_cast<float>(texture_.width()), static_cast<float>(texture_.height())), ImVec2(0, 0),
+                     ImVec2(texture_.u_max(), texture_.v_max()));
+    }
     ImGui::SetCursorScreenPos(lo);
     ImGui::InvisibleButton("volume-view", ImVec2(static_cast<float>(w), static_cast<float>(h)),
                            ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonMiddle |
@@ -166,6 +178,8 @@ void VolumeView::draw(Workstation &ws)
     } else {
         std::snprintf(caption, sizeof caption, "Open a volume: File > Open, drop a file or folder here");
     }
+    if (frame && frame->gpu) // drawn in the window's OpenGL context, no read back
+        std::strncat(caption, ", on the GPU", sizeof caption - std::strlen(caption) - 1);
     dl->AddText({hi.x - ImGui::CalcTextSize(caption).x - 8, lo.y + 4}, IM_COL32(200, 200, 200, 255), caption);
 }
 

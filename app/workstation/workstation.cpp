@@ -48,6 +48,15 @@ pipeline::PipelineOptions background(pipeline::PipelineOptions o)
     return o;
 }
 
+pipeline::ProgressiveView::Options progressive(std::shared_ptr<pipeline::FrameSurface> surface)
+{
+    pipeline::ProgressiveView::Options o;
+    o.worker_nice = kBackgroundNice;
+    o.preview = true; // a first image before the contour tree is done
+    o.surface = std::move(surface);
+    return o;
+}
+
 } // namespace
 
 Workstation::Workstation(const PluginRegistry &registry, pipeline::PipelineOptions options)
@@ -61,10 +70,18 @@ Workstation::Workstation(const PluginRegistry &registry, pipeline::PipelineOptio
     d.view.width = viewport_[0];
     d.view.height = viewport_[1];
     history_ = History(d);
-    pipeline::ProgressiveView::Options progressive;
-    progressive.worker_nice = kBackgroundNice;
-    progressive.preview = true; // a first image before the contour tree is done
-    view3d_ = std::make_unique<pipeline::ProgressiveView>(pipeline_, progressive);
+    view3d_ = std::make_unique<pipeline::ProgressiveView>(pipeline_, progressive(nullptr));
+}
+
+void Workstation::draw_on(std::shared_ptr<pipeline::FrameSurface> surface,
+                          std::function<RenderedImage(const GlFrame &)> read_back)
+{
+    const bool drawing = surface != nullptr;
+    read_back_ = std::move(read_back);
+    view3d_.reset(); // its thread lets the old surface go
+    view3d_ = std::make_unique<pipeline::ProgressiveView>(pipeline_, progressive(std::move(surface)));
+    if (drawing && has_input())
+        touch_ = view3d_->touch();
 }
 
 Workstation::~Workstation()
@@ -427,9 +444,14 @@ void Workstation::save_session(const fs::path &path)
 void Workstation::screenshot(const fs::path &path)
 {
     const auto render = pipeline_.latest<Stage::Render>();
-    if (!render || !pipeline_.is_current(Stage::Render)) {
+    const auto frame = view3d_->latest();
+    if (frame && frame->gpu) {
+        // Drawn on the GPU: the frame shown, read back.
+        if (!read_back_)
+            throw std::runtime_error("screenshot: the 3D view's frame is on the GPU and cannot be read back");
+        io::write_image(path, read_back_(*frame->gpu));
+    } else if (!render || !pipeline_.is_current(Stage::Render)) {
         // Not yet current: the frame shown (coarse or refined).
-        const auto frame = view3d_->latest();
         if (!frame)
             throw std::runtime_error("screenshot: the 3D view has no image yet");
         io::write_image(path, frame->image);

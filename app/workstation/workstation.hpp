@@ -20,6 +20,7 @@
 #include <array>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <future>
 #include <memory>
 #include <optional>
@@ -53,6 +54,13 @@ public:
     pipeline::Pipeline &pipeline() { return pipeline_; }
     const pipeline::PluginCatalog &catalog() const { return pipeline_.catalog(); }
     pipeline::ProgressiveView &volume_view() { return *view3d_; }
+    // The 3D view's frames, from renderers that draw into OpenGL, drawn on
+    // this surface's canvas (nullptr: as images).  Restarts the view's
+    // thread (set on_frame again after).
+    // `read_back` reads a frame drawn there (for screenshots; on the
+    // thread that calls screenshot, with a context that sees the texture).
+    void draw_on(std::shared_ptr<pipeline::FrameSurface> surface,
+                 std::function<RenderedImage(const GlFrame &)> read_back = {});
     const History &history() const { return history_; }
     ViewState &view() { return view_; }
     const pipeline::Document &document() const { return history_.current(); }
@@ -164,6 +172,7 @@ private:
 
     pipeline::Pipeline pipeline_;
     std::unique_ptr<pipeline::ProgressiveView> view3d_;
+    std::function<RenderedImage(const GlFrame &)> read_back_;
     History history_;
     ViewState view_;
     std::array<uint32_t, 2> viewport_{512, 512};

@@ -9,6 +9,7 @@
 #include "recovery.hpp"
 #include "relation_wheel_view.hpp"
 #include "script.hpp"
+#include "window_surface.hpp"
 #include "slice_view.hpp"
 #include "tree_view.hpp"
 #include "volume_view.hpp"
@@ -139,6 +140,7 @@ private:
     Workstation &ws_;
     const WindowOptions &options_;
     GLFWwindow *window_ = nullptr;
+    std::shared_ptr<WindowSurface> surface_; // the 3D view's GPU frames (renderers that draw into OpenGL)
     std::optional<ScriptRunner> script_;
     std::optional<FrameLog> frame_log_;
     // Where the current frame's time goes, for the frame log's slow frames.
@@ -592,6 +594,15 @@ int Window::run()
             for (SliceView &s : slices_)
                 s.reserve();
         }
+        // Renderers that draw into OpenGL (the GL ray caster) draw the 3D
+        // view in a context that shares textures with this window's: its
+        // frames are shown without a read back.
+        try {
+            surface_ = std::make_shared<WindowSurface>(window_);
+            ws_.draw_on(surface_, read_frame);
+        } catch (const std::exception &e) {
+            ws_.say(ARBOR_LOG_WARNING, std::string("the 3D view's frames come through the CPU: ") + e.what());
+        }
         if (options_.open)
             open(*options_.open);
         else if (options_.recovery && !script_ && fs::exists(recovery_path()))
@@ -634,6 +645,11 @@ int Window::run()
     }
     if (options_.recovery && status == 0)
         autosave_.finish(); // a normal end: nothing to recover
+    if (surface_) {
+        volume_.let_go(); // the frame it holds
+        ws_.draw_on(nullptr); // the view's thread lets the surface go
+        surface_.reset();     // its textures die here, the window's context current
+    }
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();

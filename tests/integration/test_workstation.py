@@ -173,22 +173,32 @@ quit
 class OpenGlIn3dView(unittest.TestCase):
     """The OpenGL ray caster drawing the 3D view (what `auto` takes on
     graphics hardware; here Mesa's llvmpipe): chosen from the renderer
-    control, its frames replace the CPU ray caster's and agree with them,
-    and the session remembers it."""
+    control, it draws the frames into the window's own OpenGL context
+    (arbor.renderer-gl/1: a context sharing textures with the window's, no
+    read back), they agree with the CPU ray caster's images (the screenshot
+    of a GPU frame is its texture read back), a click still picks, switching
+    back gives images again, and the session remembers the renderer."""
 
     def test_the_opengl_ray_caster_draws_the_3d_view(self):
         o = SCRATCH / "workstation-gl"
         o.mkdir(parents=True, exist_ok=True)
         status, _, err = view("--phantom", "head", "--no-recovery", script=f"""\
 wait idle 300
+expect-frames image
 screenshot {o}/cpu.png
 set renderer gl-raycast
 wait idle 300
+expect-frames gpu
 screenshot {o}/gl.png
+pick 370 278
 orbit 90 30
 wait idle 300
+expect-frames gpu
 screenshot {o}/gl-orbit.png
 save-session {o}/session.json
+set renderer cpu-raycast
+wait idle 300
+expect-frames image
 quit
 """)
         self.assertEqual(status, 0, err)

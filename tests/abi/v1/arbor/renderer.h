@@ -11,8 +11,9 @@
  * whenever the contents behind the pointers change.  The pointers themselves
  * are [borrowed: until return]: keep copies or derived data, keyed by the
  * revisions, never the pointers.  One instance renders the pipeline's frames
- * (the workstation's previews and passes too); a turntable or the choice of
- * the default renderer uses an instance of its own.
+ * (the workstation's previews and passes too); a turntable, the choice of
+ * the default renderer and the workstation's frames drawn into its OpenGL
+ * context (arbor.renderer-gl/1) use instances of their own.
  */
 #ifndef ARBOR_RENDERER_H
 #define ARBOR_RENDERER_H
