@@ -5,11 +5,14 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <utility>
 
 namespace arbor::raycast {
 
@@ -86,6 +89,27 @@ private:
 
 inline float length(const std::array<float, 3> &w) { return std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]); }
 
+// The index-space gradients of row (j, k), as WorldGradient::at takes them,
+// a row at a time so that the loops vectorise: central differences inside,
+// one-sided at the faces, 0 along an axis of one voxel.
+void row_gradients(const VoxelGrid &g, int64_t j, int64_t k, float *gx, float *gy, float *gz)
+{
+    const int64_t nx = g.nx, sy = g.nx, sz = g.nx * g.ny;
+    const float *v = g.value.data() + g.index(0, j, k);
+    const float *ylo = j > 0 ? v - sy : v, *yhi = j + 1 < g.ny ? v + sy : v;
+    const float *zlo = k > 0 ? v - sz : v, *zhi = k + 1 < g.nz ? v + sz : v;
+    const float yd = j > 0 && j + 1 < g.ny ? 0.5f : 1.0f, zd = k > 0 && k + 1 < g.nz ? 0.5f : 1.0f;
+    for (int64_t i = 0; i < nx; ++i) {
+        gy[i] = (yhi[i] - ylo[i]) * yd;
+        gz[i] = (zhi[i] - zlo[i]) * zd;
+    }
+    for (int64_t i = 1; i + 1 < nx; ++i)
+        gx[i] = (v[i + 1] - v[i - 1]) * 0.5f;
+    gx[0] = nx > 1 ? v[1] - v[0] : 0.0f;
+    if (nx > 1)
+        gx[nx - 1] = v[nx - 1] - v[nx - 2];
+}
+
 // Rounded half away from zero, like lround, for |x| <= 127.5.
 inline int8_t quantize(float x) { return static_cast<int8_t>(x < 0 ? x - 0.5f : x + 0.5f); }
 
@@ -96,8 +120,20 @@ inline int8_t quantize(float x) { return static_cast<int8_t>(x < 0 ? x - 0.5f : 
 // One pass, and no per-voxel array beyond the two results.
 void compute_normals(VoxelGrid &g, const sdk::Task &task)
 {
-    const auto [lo, hi] = std::minmax_element(g.value.begin(), g.value.end());
-    const float flat = static_cast<float>(1e-3 * (*hi - *lo) / g.min_spacing);
+    using Range = std::pair<float, float>;
+    const Range range = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, g.value.size(), std::size_t{1} << 20),
+        Range{std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()},
+        [&](const tbb::blocked_range<std::size_t> &r, Range m) {
+            for (std::size_t v = r.begin(); v != r.end(); ++v) {
+                m.first = std::min(m.first, g.value[v]);
+                m.second = std::max(m.second, g.value[v]);
+            }
+            return m;
+        },
+        [](Range a, Range b) { return Range{std::min(a.first, b.first), std::max(a.second, b.second)}; });
+    const float flat =
+        g.value.empty() ? 0.0f : static_cast<float>(1e-3 * (range.second - range.first) / g.min_spacing);
     const WorldGradient gradient(g);
     const std::size_t voxels = g.value.size();
     std::vector<float> sample;
@@ -114,22 +150,33 @@ void compute_normals(VoxelGrid &g, const sdk::Task &task)
 
     g.normal.resize(3 * voxels);
     g.gradient.resize(voxels);
+    float m[9];
+    for (int c = 0; c < 9; ++c)
+        m[c] = static_cast<float>(g.to_voxel[c]);
     for_slabs(g.nz, task, [&](int64_t k) {
-        std::size_t v = g.index(0, 0, k);
-        for (int64_t j = 0; j < g.ny; ++j)
-            for (int64_t i = 0; i < g.nx; ++i, ++v) {
-                const std::array<float, 3> w = gradient.at(i, j, k);
-                const float len = length(w);
-                g.gradient[v] = static_cast<uint8_t>(std::min(255.0f, len * scale + 0.5f));
-                int8_t *n = &g.normal[3 * v];
-                if (len <= flat) {
-                    n[0] = n[1] = n[2] = 0;
-                    continue;
-                }
-                const float unit = 127.0f / len;
-                for (int c = 0; c < 3; ++c)
-                    n[c] = quantize(w[c] * unit);
+        std::vector<float> row(6 * static_cast<std::size_t>(g.nx));
+        float *gx = row.data(), *gy = gx + g.nx, *gz = gy + g.nx, *wx = gz + g.nx, *wy = wx + g.nx, *wz = wy + g.nx;
+        for (int64_t j = 0; j < g.ny; ++j) {
+            row_gradients(g, j, k, gx, gy, gz);
+            // To LPS, as WorldGradient::at does, term for term.
+            for (int64_t i = 0; i < g.nx; ++i) {
+                wx[i] = m[0] * gx[i] + m[3] * gy[i] + m[6] * gz[i];
+                wy[i] = m[1] * gx[i] + m[4] * gy[i] + m[7] * gz[i];
+                wz[i] = m[2] * gx[i] + m[5] * gy[i] + m[8] * gz[i];
             }
+            const std::size_t v0 = g.index(0, j, k);
+            uint8_t *magnitude = g.gradient.data() + v0;
+            int8_t *n = g.normal.data() + 3 * v0;
+            for (int64_t i = 0; i < g.nx; ++i) {
+                const float len = std::sqrt(wx[i] * wx[i] + wy[i] * wy[i] + wz[i] * wz[i]);
+                magnitude[i] = static_cast<uint8_t>(std::min(255.0f, len * scale + 0.5f));
+                // Flat: no direction to shade by.
+                const float unit = len <= flat ? 0.0f : 127.0f / len;
+                n[3 * i] = quantize(wx[i] * unit);
+                n[3 * i + 1] = quantize(wy[i] * unit);
+                n[3 * i + 2] = quantize(wz[i] * unit);
+            }
+        }
     });
 }
 
@@ -155,8 +202,11 @@ void LabelGrid::assign(const uint32_t *labels, std::size_t count, uint32_t max_l
         std::copy(labels, labels + count, wide_.begin());
         return;
     }
-    for (std::size_t v = 0; v < count; ++v)
-        set(v, labels[v]);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, std::size_t{1} << 18),
+                      [&](const tbb::blocked_range<std::size_t> &r) {
+                          for (std::size_t v = r.begin(); v != r.end(); ++v)
+                              set(v, labels[v]);
+                      });
 }
 
 void LabelGrid::clear()
@@ -241,9 +291,10 @@ const VoxelGrid &VoxelGridCache::update(const arbor_volume &v, uint64_t volume_r
         case ARBOR_VOXEL_F64: copy_values<double>(v, g.value, task); break;
         default: sdk::fail(ARBOR_ERROR_UNSUPPORTED, "unknown voxel type");
         }
-        for (float x : g.value)
-            if (!std::isfinite(x))
-                sdk::fail(ARBOR_ERROR_INVALID_ARGUMENT, "the volume holds NaN or infinite values");
+        if (v.voxel_type == ARBOR_VOXEL_F32 || v.voxel_type == ARBOR_VOXEL_F64) // integers are finite
+            for (float x : g.value)
+                if (!std::isfinite(x))
+                    sdk::fail(ARBOR_ERROR_INVALID_ARGUMENT, "the volume holds NaN or infinite values");
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c)
                 g.to_world[3 * r + c] = v.direction[3 * r + c] * v.spacing[c];
