@@ -111,7 +111,7 @@ bool ProgressiveView::draw_gl(Frame &frame, const FramePass &pass, std::stop_tok
         return false;
     const std::unique_ptr<PassScene> p = pipeline_.pass_scene(stop);
     PluginSlot::Lease renderer = gl_renderers_.lease(p->renderer, nullptr);
-    if (std::find(drew_gl_.begin(), drew_gl_.end(), p->renderer) == drew_gl_.end())
+    if (std::none_of(drew_gl_.begin(), drew_gl_.end(), [&](const PluginSetting &d) { return d.id == p->renderer.id; }))
         drew_gl_.push_back(p->renderer);
     if (pass.pass == ARBOR_RENDER_PASS_SUPERSAMPLE && !canvas_full_)
         return false; // the canvas does not hold the full pass to refine
