@@ -3,6 +3,7 @@
 #include "core/cancelled.hpp"
 #include "core/stopwatch.hpp"
 #include "core/thread_priority.hpp"
+#include "host/host_services.hpp"
 
 #include <algorithm>
 
@@ -120,7 +121,18 @@ bool ProgressiveView::draw_gl(Frame &frame, const FramePass &pass, std::stop_tok
     // front shows it.
     request.background[3] = 1.0f;
     canvas_full_ = false;
-    render_gl(*renderer, request, options_.surface->canvas(p->width, p->height), {}, pass, nullptr, std::move(stop));
+    try {
+        render_gl(*renderer, request, options_.surface->canvas(p->width, p->height), {}, pass, nullptr, stop);
+    } catch (const Cancelled &) {
+        throw;
+    } catch (const std::exception &e) {
+        // Its offscreen path may still work (a context it cannot use, a
+        // device out of memory): images from now on, and said why.
+        known->second = false;
+        log_message(ARBOR_LOG_WARNING, p->renderer.id,
+                    std::string("the 3D view's frames come back through the CPU: ") + e.what());
+        return false;
+    }
     canvas_full_ = pass.pass != ARBOR_RENDER_PASS_COARSE;
     frame.gpu = options_.surface->snapshot();
     return true;

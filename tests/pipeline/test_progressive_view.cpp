@@ -4,6 +4,7 @@
 // never replaced by an older one's.  Real plugins, built-in phantom.
 #include "pipeline/progressive_view.hpp"
 
+#include "counting_surface.hpp"
 #include "plugin_fixture.hpp"
 
 #include <gtest/gtest.h>
@@ -95,6 +96,32 @@ TEST(ProgressiveView, AnErrorIsReportedAndTheNextTouchTriesAgain)
     p.set_document(small_head());
     const uint64_t t = view.touch();
     ASSERT_TRUE(view.wait_for(t, ARBOR_RENDER_PASS_FULL, 0, 60s)) << view.error();
+}
+
+// With a surface but a renderer that draws no OpenGL (the CPU ray
+// caster): images as without one, the surface's context made current on
+// the view's thread once and let go when the view ends, its canvas never
+// asked for.
+TEST(ProgressiveView, ARendererThatDrawsNoOpenGlGivesImagesBesideASurface)
+{
+    Pipeline p(test::built_plugins());
+    p.set_document(small_head());
+    const auto surface = std::make_shared<test::CountingSurface>();
+    {
+        ProgressiveView::Options options{50ms, 1};
+        options.surface = surface;
+        ProgressiveView view(p, options);
+        const uint64_t t = view.touch();
+        const auto refined = view.wait_for(t, ARBOR_RENDER_PASS_SUPERSAMPLE, 1, 60s);
+        ASSERT_TRUE(refined) << view.error();
+        EXPECT_FALSE(refined->gpu);
+        EXPECT_EQ(refined->image.width, 64u);
+        EXPECT_TRUE(view.error().empty());
+    }
+    EXPECT_EQ(surface->made_current, 1);
+    EXPECT_EQ(surface->released, 1);
+    EXPECT_EQ(surface->canvases, 0);
+    EXPECT_EQ(surface->snapshots, 0);
 }
 
 } // namespace

@@ -8,6 +8,8 @@
 #include "gl_scene.hpp"
 
 #include "core/cancelled.hpp"
+#include "counting_surface.hpp"
+#include "pipeline/progressive_view.hpp"
 #include "host/host_services.hpp"
 
 #define GL_GLEXT_PROTOTYPES
@@ -16,6 +18,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdlib>
 
 namespace arbor {
@@ -260,6 +263,35 @@ TEST(GlRayCasterInContext, ATargetOfTheWrongSizeIsRefused)
     Task task;
     EXPECT_EQ(table.render_gl(s.gl.get(), &r, &target, task.get()), ARBOR_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(s.gl.last_error().find("frame's size"), std::string::npos) << s.gl.last_error();
+}
+
+// The workstation's path: a progressive view with a surface.  When the
+// OpenGL ray caster cannot draw into it (here a canvas that names no
+// texture), the view says why once and falls back to images, without an
+// error and without asking again.
+TEST(GlRayCasterInContext, AViewFallsBackToImagesWhenTheRendererCannotDrawIntoItsSurface)
+{
+    using namespace std::chrono_literals;
+    pipeline::Pipeline p(test::built_plugins());
+    pipeline::Document d = pipeline::default_document();
+    d.input.phantom = pipeline::PhantomInput{};
+    d.input.phantom->size = 48;
+    d.cut.keep = 6;
+    d.view.width = d.view.height = 64;
+    d.view.renderer.id = kGl;
+    p.set_document(d);
+    const auto surface = std::make_shared<test::CountingSurface>();
+    pipeline::ProgressiveView::Options options{50ms, 1};
+    options.surface = surface;
+    pipeline::ProgressiveView view(p, options);
+    const uint64_t t = view.touch();
+    const auto refined = view.wait_for(t, ARBOR_RENDER_PASS_SUPERSAMPLE, 1, 120s);
+    ASSERT_TRUE(refined) << view.error();
+    EXPECT_FALSE(refined->gpu);
+    EXPECT_EQ(refined->image.width, 64u);
+    EXPECT_TRUE(view.error().empty()) << view.error();
+    EXPECT_EQ(surface->canvases, 1) << "asked again after it failed";
+    EXPECT_EQ(surface->snapshots, 0);
 }
 
 } // namespace
