@@ -270,6 +270,8 @@ void write_run_report(const std::filesystem::path &path, const RunReport &r)
                          {"arcs", r.tree->tree.arc_count()},
                          {"seconds", r.tree->seconds},
                          {"from_cache", r.tree->from_cache}};
+    if (!r.tree->memory_plan.empty())
+        j["contour_tree"]["memory_plan"] = r.tree->memory_plan;
     j["stage_runs"] = stage_runs_json(r.stage_runs);
     if (!r.session.empty())
         j["session"] = r.session.string();

@@ -1,5 +1,7 @@
 #include "memory_plan.hpp"
 
+#include <algorithm>
+
 #include "core/available_memory.hpp"
 #include "core/volume_header.hpp"
 #include "topology/topology_pipeline.hpp"
@@ -32,16 +34,16 @@ std::string admit_volume(const arbor_volume &header, const Document &document)
     if (problem.empty())
         return "";
     return problem + " (before its contour tree, which needs " +
-           format_bytes(topology::contour_tree_work_bytes(voxels)) +
+           format_bytes(topology::least_contour_tree_work_bytes(voxels, header.voxel_type)) +
            " more unless cached); crop or downsample the volume, or free memory";
 }
 
 void require_tree_memory(const Volume &volume)
 {
-    const uint64_t needed = topology::contour_tree_work_bytes(volume.voxel_count());
+    const uint64_t needed = topology::least_contour_tree_work_bytes(volume.voxel_count(), volume.type());
     const std::string problem = check_memory(
         needed, "the contour tree of " + dims_text(volume.geometry().dims.data()) + " voxels",
-        std::to_string(topology::kContourTreeWorkBytesPerVoxel) + " bytes a voxel of work space");
+        std::to_string(needed / std::max<uint64_t>(1, volume.voxel_count())) + " bytes a voxel of work space");
     if (!problem.empty())
         throw std::runtime_error(problem + "; crop or downsample the volume, or free memory");
 }

@@ -22,8 +22,9 @@ namespace arbor::pipeline {
 std::string admit_volume(const arbor_volume &header, const Document &document);
 
 // Before the contour tree is computed: throws std::runtime_error naming
-// what the tree of `volume` needs at the least (its sweeps one after the
-// other) and what is available when it does not fit.
+// what the tree of `volume` needs at the least (topology_pipeline.hpp:
+// streamed for 8- and 16-bit volumes, sweeps one after the other for the
+// rest) and what is available when it does not fit.
 void require_tree_memory(const Volume &volume);
 
 } // namespace arbor::pipeline

@@ -173,6 +173,7 @@ std::shared_ptr<const void> contour_tree(StageContext &c)
     c.job.finish();
     r->tree = std::move(t.tree);
     r->timings = std::move(t.timings);
+    r->memory_plan = topology::tree_memory_plan_name(t.plan);
     r->seconds = watch.lap();
     if (cache) {
         try {

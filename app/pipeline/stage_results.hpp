@@ -51,6 +51,7 @@ struct ContourTreeResult {
     std::vector<topology::StageTiming> timings;
     double seconds = 0.0;
     bool from_cache = false;
+    std::string memory_plan; // how its work space was laid out (topology_pipeline.hpp); "" from the cache
 };
 
 struct DecompositionResult {

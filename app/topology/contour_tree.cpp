@@ -1,6 +1,7 @@
 #include "contour_tree.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -48,7 +49,7 @@ public:
     // `arcs` bounds the number of arcs (the number of nodes).
     LeafPruning(MergeVertex *state, uint32_t n, std::size_t arcs) : n_(n), s_(state) { arcs_.reserve(arcs); }
 
-    void run(const ProgressFn &progress, const uint32_t *order)
+    void run(const ProgressFn &progress, const OrderPieces &order)
     {
         uint32_t remaining = n_;
         const uint32_t step = std::max<uint32_t>(1, n_ / 64);
@@ -66,18 +67,19 @@ public:
         // vertices go in the first passes; the stack finishes the rest.
         constexpr int kPasses = 4;
         constexpr uint32_t kAhead = 16;
+        static_assert(kAhead <= OrderPieces::kLookahead);
         for (int pass = 0; pass < kPasses && remaining > 1; ++pass) {
-            const bool downward = pass % 2 == 0;
             const uint32_t before = remaining;
-            for (uint32_t i = 0; i < n_ && remaining > 1; ++i) {
-                const uint32_t r = downward ? n_ - 1 - i : i;
-                if (i + kAhead < n_)
-                    __builtin_prefetch(&s_[order[downward ? r - kAhead : r + kAhead]]);
-                if (remove_if_leaf(order[r], nullptr)) {
-                    --remaining;
-                    report();
+            order.walk(pass % 2 == 0, [&](const OrderPiece &piece, uint32_t first) {
+                for (uint32_t i = 0; i < piece.count && remaining > 1; ++i) {
+                    if (first + i + kAhead < n_)
+                        __builtin_prefetch(&s_[piece[i + kAhead]]);
+                    if (remove_if_leaf(piece[i], nullptr)) {
+                        --remaining;
+                        report();
+                    }
                 }
-            }
+            });
             if (remaining == before)
                 break;
         }
@@ -229,7 +231,7 @@ NodeKind kind_of(uint8_t up, uint8_t down)
 
 } // namespace
 
-ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, UninitializedBuffer<uint32_t> order,
+ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, OrderPieces order,
                                const ProgressFn &progress)
 {
     const uint32_t n = static_cast<uint32_t>(merge_state.size());
@@ -250,7 +252,7 @@ ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, Uni
     }
 
     LeafPruning pruning(state, n, node_count);
-    pruning.run(progress, order.data());
+    pruning.run(progress, order);
     HugeVector<LeafPruning::Arc> arcs = pruning.take_arcs();
 
     // The merge may end on a regular vertex (one edge from each side): the
@@ -274,19 +276,21 @@ ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, Uni
     ct.node_down.reserve(node_count);
     ct.node_kind.reserve(node_count);
     constexpr uint32_t kAhead = 16;
-    for (uint32_t i = 0; i < n; ++i) {
-        if (i + kAhead < n)
-            __builtin_prefetch(&state[order[i + kAhead]]);
-        const uint32_t v = order[i];
-        MergeVertex &sv = state[v];
-        if (sv.cnt_up == 1 && sv.cnt_down == 1)
-            continue;
-        sv.st_down = static_cast<uint32_t>(ct.node_vertex.size());
-        ct.node_vertex.push_back(v);
-        ct.node_up.push_back(sv.cnt_up);
-        ct.node_down.push_back(sv.cnt_down);
-        ct.node_kind.push_back(kind_of(sv.cnt_up, sv.cnt_down));
-    }
+    order.walk(false, [&](const OrderPiece &piece, uint32_t first) {
+        for (uint32_t i = 0; i < piece.count; ++i) {
+            if (first + i + kAhead < n)
+                __builtin_prefetch(&state[piece[i + kAhead]]);
+            const uint32_t v = piece[i];
+            MergeVertex &sv = state[v];
+            if (sv.cnt_up == 1 && sv.cnt_down == 1)
+                continue;
+            sv.st_down = static_cast<uint32_t>(ct.node_vertex.size());
+            ct.node_vertex.push_back(v);
+            ct.node_up.push_back(sv.cnt_up);
+            ct.node_down.push_back(sv.cnt_down);
+            ct.node_kind.push_back(kind_of(sv.cnt_up, sv.cnt_down));
+        }
+    });
     order.release();
     if (ct.node_vertex.size() != node_count)
         throw std::logic_error("contour tree merge found " + std::to_string(ct.node_vertex.size()) +
@@ -310,11 +314,16 @@ ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, Uni
         compact[dropped] = compact[kept];
     arcs = {};
 
-    // Augmentation (the order is gone by now: the peak stays the state's).
-    ct.vertex_arc = UninitializedBuffer<uint32_t>(n, Pages::Small);
-    for (uint32_t v = 0; v < n; ++v)
-        ct.vertex_arc[v] = compact.empty() ? kNoArc : compact[state[v].label];
-    merge_state.release();
+    // Augmentation, in place: the arc of vertex v (4 bytes) overwrites the
+    // state from the front, in state[v / 4], which was read already, and the
+    // rest of the state is returned to the system.  The peak stays the
+    // state's, and no page is faulted in for the segmentation.
+    char *arc_bytes = reinterpret_cast<char *>(state);
+    for (uint32_t v = 0; v < n; ++v) {
+        const uint32_t arc = compact.empty() ? kNoArc : compact[state[v].label];
+        std::memcpy(arc_bytes + sizeof(uint32_t) * v, &arc, sizeof arc);
+    }
+    ct.vertex_arc = std::move(merge_state).shrink_to<uint32_t>(n);
     compact = {};
 
     // Incidence lists.

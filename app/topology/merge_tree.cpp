@@ -69,11 +69,10 @@ struct ComponentInArray {
 };
 
 template <bool Join, class ComponentOf>
-void sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order_buffer, MergeVertex *state,
-           ComponentOf component, const ProgressFn &progress)
+void sweep(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *state, ComponentOf component,
+           const ProgressFn &progress)
 {
-    const uint32_t n = static_cast<uint32_t>(order_buffer.size());
-    const uint32_t *order = order_buffer.data();
+    const uint32_t n = order.size();
     const std::vector<LinkComponents> &link = link_components_table();
     Components components;
     // A neighbour is below the current vertex (above, for the split tree)
@@ -92,8 +91,8 @@ void sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order
     // neighbours' component words it will read (one per piece of its lower
     // link, usually in other rows and planes), so those are fetched too.
     constexpr uint32_t kAhead = 16;
+    static_assert(2 * kAhead <= OrderPieces::kLookahead);
     const int64_t row = grid.nx(), plane = grid.nx() * grid.ny();
-    const auto vertex_at = [&](uint32_t at) { return order[Join ? at : n - 1 - at]; };
     const auto lower_link = [&](uint32_t v) {
         uint32_t below = 0;
         grid.for_each_indexed(v, [&](std::size_t i, int64_t neighbor) {
@@ -102,8 +101,7 @@ void sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order
         });
         return below;
     };
-    const auto prefetch_bits = [&](uint32_t at) {
-        const int64_t w = vertex_at(at);
+    const auto prefetch_bits = [&](int64_t w) {
         __builtin_prefetch(&component[w], 1);
         __builtin_prefetch(&state[w], 1);
         for (const int64_t p : {w - plane, w, w + plane})
@@ -118,16 +116,14 @@ void sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order
     // and components may change in between; a stale guess costs one fetch.
     constexpr uint32_t kNear = 8;
     uint32_t ahead_below[kAhead];
-    const auto prefetch_components = [&](uint32_t at) {
-        const uint32_t w = vertex_at(at);
+    const auto prefetch_components = [&](uint32_t w, uint32_t at) {
         const uint32_t below = lower_link(w);
         ahead_below[at % kAhead] = below;
         const LinkComponents &pieces = link[below];
         for (int p = 0; p < pieces.count; ++p)
             __builtin_prefetch(&component[w + grid.offset(pieces.first[p])]);
     };
-    const auto prefetch_newest = [&](uint32_t at) {
-        const uint32_t w = vertex_at(at);
+    const auto prefetch_newest = [&](uint32_t w, uint32_t at) {
         const LinkComponents &pieces = link[ahead_below[at % kAhead]];
         for (int p = 0; p < pieces.count; ++p) {
             const uint32_t c = component[w + grid.offset(pieces.first[p])];
@@ -136,53 +132,59 @@ void sweep(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order
         }
     };
 
-    for (uint32_t step = 0; step < n; ++step) {
-        if (step + 2 * kAhead < n)
-            prefetch_bits(step + 2 * kAhead);
-        if (step + kAhead < n)
-            prefetch_components(step + kAhead);
-        if (step + kNear < n && step + kNear >= kAhead)
-            prefetch_newest(step + kNear);
-        const uint32_t v = vertex_at(step);
-        const uint32_t below = lower_link(v);
-        seen[v >> 6] |= uint64_t{1} << (v & 63);
-        const LinkComponents &pieces = link[below];
-        uint32_t roots[6];
-        int count = 0;
-        for (int p = 0; p < pieces.count; ++p) {
-            const uint32_t r = components.find(component[v + grid.offset(pieces.first[p])]);
-            bool known = false;
-            for (int i = 0; i < count; ++i)
-                known |= roots[i] == r;
-            if (!known)
-                roots[count++] = r;
-        }
-        (Join ? state[v].jt_deg : state[v].st_deg) = static_cast<uint8_t>(count);
-        uint32_t root;
-        if (count == 0) {
-            root = components.create(v);
-        } else {
-            root = roots[0];
-            for (int i = 0; i < count; ++i) {
-                MergeVertex &joined = state[components.newest[roots[i]]];
-                (Join ? joined.jt_up : joined.st_down) = v;
-                if (i > 0)
-                    root = components.unite(root, roots[i]);
+    uint32_t last_vertex = kNoVertex;
+    order.walk(!Join, [&](const OrderPiece &piece, uint32_t first) {
+        for (uint32_t i = 0; i < piece.count; ++i) {
+            const uint32_t step = first + i;
+            if (step + 2 * kAhead < n)
+                prefetch_bits(piece[i + 2 * kAhead]);
+            if (step + kAhead < n)
+                prefetch_components(piece[i + kAhead], step + kAhead);
+            if (step + kNear < n && step + kNear >= kAhead)
+                prefetch_newest(piece[i + kNear], step + kNear);
+            const uint32_t v = piece[i];
+            const uint32_t below = lower_link(v);
+            seen[v >> 6] |= uint64_t{1} << (v & 63);
+            const LinkComponents &pieces = link[below];
+            uint32_t roots[6];
+            int count = 0;
+            for (int p = 0; p < pieces.count; ++p) {
+                const uint32_t r = components.find(component[v + grid.offset(pieces.first[p])]);
+                bool known = false;
+                for (int i = 0; i < count; ++i)
+                    known |= roots[i] == r;
+                if (!known)
+                    roots[count++] = r;
             }
-            components.newest[root] = v;
+            (Join ? state[v].jt_deg : state[v].st_deg) = static_cast<uint8_t>(count);
+            uint32_t root;
+            if (count == 0) {
+                root = components.create(v);
+            } else {
+                root = roots[0];
+                for (int i = 0; i < count; ++i) {
+                    MergeVertex &joined = state[components.newest[roots[i]]];
+                    (Join ? joined.jt_up : joined.st_down) = v;
+                    if (i > 0)
+                        root = components.unite(root, roots[i]);
+                }
+                components.newest[root] = v;
+            }
+            component[v] = root;
+            if (progress && (step & (kProgressStep - 1)) == kProgressStep - 1)
+                progress(static_cast<double>(step) / n);
         }
-        component[v] = root;
-        if (progress && (step & (kProgressStep - 1)) == kProgressStep - 1)
-            progress(static_cast<double>(step) / n);
-    }
-    if (n > 0) {
-        MergeVertex &last = state[order[Join ? n - 1 : 0]];
+        if (piece.count > 0)
+            last_vertex = piece[piece.count - 1];
+    });
+    if (last_vertex != kNoVertex) { // the last vertex swept: the root of the tree
+        MergeVertex &last = state[last_vertex];
         (Join ? last.jt_up : last.st_down) = kNoVertex;
     }
 }
 
 template <bool Join>
-void sweep_into(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order, MergeVertex *state,
+void sweep_into(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *state,
                 uint32_t *component, const ProgressFn &progress)
 {
     if (component)
@@ -193,13 +195,13 @@ void sweep_into(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &
 
 } // namespace
 
-void compute_join_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order, MergeVertex *state,
+void compute_join_tree(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *state,
                        uint32_t *component, const ProgressFn &progress)
 {
     sweep_into<true>(grid, order, state, component, progress);
 }
 
-void compute_split_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order, MergeVertex *state,
+void compute_split_tree(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *state,
                         uint32_t *component, const ProgressFn &progress)
 {
     sweep_into<false>(grid, order, state, component, progress);

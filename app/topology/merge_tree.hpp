@@ -19,8 +19,7 @@
 #pragma once
 
 #include "grid_neighbors.hpp"
-#include "uninitialized_buffer.hpp"
-#include "vertex_order.hpp"
+#include "order_pieces.hpp"
 
 #include <cstdint>
 
@@ -49,15 +48,15 @@ struct MergeVertex {
 };
 static_assert(sizeof(MergeVertex) == 16);
 
-// Sweeps of the grid's vertices in the order `order` (sort_vertices: the
-// order is all they need of the values).  The join sweep fills jt_up and
+// Sweeps of the grid's vertices in the order `order` (whole or streamed:
+// the order is all they need of the values).  The join sweep fills jt_up and
 // jt_deg, the split sweep st_down and st_deg; neither touches the other's
 // fields, so two threads may fill one state.  Each keeps the component of
 // every vertex in `component` (4 bytes a vertex) or, when that is nullptr,
 // in the state's `label`, which only one sweep at a time may do.
-void compute_join_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order, MergeVertex *state,
-                       uint32_t *component, const ProgressFn &progress = {});
-void compute_split_tree(const GridNeighbors &grid, const UninitializedBuffer<uint32_t> &order, MergeVertex *state,
-                        uint32_t *component, const ProgressFn &progress = {});
+void compute_join_tree(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *state, uint32_t *component,
+                       const ProgressFn &progress = {});
+void compute_split_tree(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *state, uint32_t *component,
+                        const ProgressFn &progress = {});
 
 } // namespace arbor::topology

@@ -5,6 +5,7 @@
 
 #include "grid_neighbors.hpp"
 #include "merge_tree.hpp"
+#include "order_pieces.hpp"
 #include "vertex_order.hpp"
 
 #include "core/volume_statistics.hpp"
@@ -38,6 +39,32 @@ void refuse_non_finite(const Volume &volume)
 
 } // namespace
 
+const char *tree_memory_plan_name(TreeMemoryPlan plan)
+{
+    switch (plan) {
+    case TreeMemoryPlan::Parallel: return "parallel";
+    case TreeMemoryPlan::Sequential: return "sequential";
+    case TreeMemoryPlan::Streamed: return "streamed";
+    }
+    return "?";
+}
+
+uint64_t least_contour_tree_work_bytes(uint64_t voxels, arbor_voxel_type type)
+{
+    return contour_tree_work_bytes(voxels, orders_by_counting(type) ? TreeMemoryPlan::Streamed
+                                                                    : TreeMemoryPlan::Sequential);
+}
+
+TreeMemoryPlan choose_tree_memory_plan(uint64_t voxels, arbor_voxel_type type, uint64_t memory_budget)
+{
+    const uint64_t room = memory_budget / 2;
+    if (contour_tree_work_bytes(voxels, TreeMemoryPlan::Parallel) <= room)
+        return TreeMemoryPlan::Parallel;
+    if (contour_tree_work_bytes(voxels, TreeMemoryPlan::Sequential) <= room || !orders_by_counting(type))
+        return TreeMemoryPlan::Sequential;
+    return TreeMemoryPlan::Streamed;
+}
+
 TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn &progress, std::stop_token stop,
                                     uint64_t memory_budget)
 {
@@ -59,7 +86,11 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
     const uint32_t n = static_cast<uint32_t>(volume.voxel_count());
     const Geometry &g = volume.geometry();
 
-    UninitializedBuffer<uint32_t> order = sort_vertices(volume.type(), volume.data(), n, report("sorting"));
+    result.plan = choose_tree_memory_plan(n, volume.type(), memory_budget);
+    OrderPieces order = result.plan == TreeMemoryPlan::Streamed
+                            ? OrderPieces(volume.type(), volume.data(), n,
+                                          (n + kStreamedOrderPieces - 1) / kStreamedOrderPieces)
+                            : OrderPieces(sort_vertices(volume.type(), volume.data(), n, report("sorting")));
     result.timings.push_back({"sort", watch.lap()});
 
     // Both sweeps fill one merge state.  They are independent: with memory
@@ -69,7 +100,7 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
     // Their memory is faulted in first, as a stage of its own: on a virtual
     // machine that alone takes seconds (core/huge_pages.hpp).
     UninitializedBuffer<MergeVertex> state(n);
-    const bool parallel = memory_budget >= contour_tree_work_bytes(n, true);
+    const bool parallel = result.plan == TreeMemoryPlan::Parallel;
     UninitializedBuffer<uint32_t> split_components(parallel ? n : 0);
     result.timings.push_back({"memory", watch.lap()});
     if (parallel) {

@@ -128,7 +128,79 @@ void radix_sort64(const double *v, uint32_t n, uint32_t *order, const ProgressFn
     std::memcpy(order, idx_a.data(), sizeof(uint32_t) * n);
 }
 
+template <class T>
+std::vector<uint32_t> value_starts(const T *v, uint32_t n)
+{
+    constexpr std::size_t buckets = std::size_t{1} << (8 * sizeof(T));
+    std::vector<uint32_t> start(buckets + 1, 0);
+    for (uint32_t i = 0; i < n; ++i)
+        ++start[small_key(v[i]) + 1];
+    for (std::size_t b = 0; b < buckets; ++b)
+        start[b + 1] += start[b];
+    return start;
+}
+
+// The scatter of counting_sort restricted to the values whose ranks meet
+// [lo, hi): a cursor per such value, and a write only for ranks in range.
+template <class T>
+void fill_range(const T *v, uint32_t n, const std::vector<uint32_t> &starts, uint32_t lo, uint32_t hi, bool reversed,
+                uint32_t *out)
+{
+    if (starts.size() != (std::size_t{1} << (8 * sizeof(T))) + 1)
+        throw std::invalid_argument("fill_order_range: counts of another voxel type");
+    if (lo >= hi)
+        return;
+    // The values holding ranks lo and hi - 1: the last k with starts[k] <= r.
+    const auto value_of = [&](uint32_t r) {
+        return static_cast<uint32_t>(std::upper_bound(starts.begin(), starts.end(), r) - starts.begin() - 1);
+    };
+    const uint32_t first = value_of(lo), span = value_of(hi - 1) - first;
+    std::vector<uint32_t> cursor(starts.begin() + first, starts.begin() + first + span + 1);
+    uint32_t *c = cursor.data();
+    uint32_t left = hi - lo;
+    for (uint32_t i = 0; i < n && left > 0; ++i) {
+        const uint32_t k = small_key(v[i]) - first; // wraps for values below: out of range
+        if (k > span)
+            continue;
+        const uint32_t r = c[k]++;
+        if (r >= lo && r < hi) {
+            out[reversed ? hi - 1 - r : r - lo] = i;
+            --left;
+        }
+    }
+}
+
 } // namespace
+
+bool orders_by_counting(arbor_voxel_type type)
+{
+    return type == ARBOR_VOXEL_U8 || type == ARBOR_VOXEL_I8 || type == ARBOR_VOXEL_U16 || type == ARBOR_VOXEL_I16;
+}
+
+std::vector<uint32_t> count_value_starts(arbor_voxel_type type, const void *values, uint32_t n)
+{
+    switch (type) {
+    case ARBOR_VOXEL_U8: return value_starts(static_cast<const uint8_t *>(values), n);
+    case ARBOR_VOXEL_I8: return value_starts(static_cast<const int8_t *>(values), n);
+    case ARBOR_VOXEL_U16: return value_starts(static_cast<const uint16_t *>(values), n);
+    case ARBOR_VOXEL_I16: return value_starts(static_cast<const int16_t *>(values), n);
+    default: throw std::invalid_argument("only 8- and 16-bit values are ordered by counting");
+    }
+}
+
+void fill_order_range(arbor_voxel_type type, const void *values, uint32_t n, const std::vector<uint32_t> &starts,
+                      uint32_t lo, uint32_t hi, bool reversed, uint32_t *out)
+{
+    if (hi > n || lo > hi || starts.empty() || starts.back() != n)
+        throw std::invalid_argument("fill_order_range: ranks out of range or counts of other values");
+    switch (type) {
+    case ARBOR_VOXEL_U8: fill_range(static_cast<const uint8_t *>(values), n, starts, lo, hi, reversed, out); break;
+    case ARBOR_VOXEL_I8: fill_range(static_cast<const int8_t *>(values), n, starts, lo, hi, reversed, out); break;
+    case ARBOR_VOXEL_U16: fill_range(static_cast<const uint16_t *>(values), n, starts, lo, hi, reversed, out); break;
+    case ARBOR_VOXEL_I16: fill_range(static_cast<const int16_t *>(values), n, starts, lo, hi, reversed, out); break;
+    default: throw std::invalid_argument("only 8- and 16-bit values are ordered by counting");
+    }
+}
 
 UninitializedBuffer<uint32_t> sort_vertices(arbor_voxel_type type, const void *values, uint32_t n,
                                             const ProgressFn &progress)

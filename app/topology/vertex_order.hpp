@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 namespace arbor::topology {
 
@@ -25,5 +26,21 @@ using ProgressFn = std::function<void(double)>;
 // `type`, lowest first.
 UninitializedBuffer<uint32_t> sort_vertices(arbor_voxel_type type, const void *values, uint32_t n,
                                             const ProgressFn &progress = {});
+
+// Whether `type` is ordered by counting (8- and 16-bit values), which is
+// what lets the order be made a range at a time (fill_order_range).
+bool orders_by_counting(arbor_voxel_type type);
+
+// For a type ordered by counting: entry k is how many vertices have a value
+// below the k-th possible one (2^8 or 2^16 buckets, and n last), so the
+// vertices of value k are at ranks [starts[k], starts[k + 1]) of the order.
+std::vector<uint32_t> count_value_starts(arbor_voxel_type type, const void *values, uint32_t n);
+
+// The vertices of ranks [lo, hi) of the order, by one scan of the values:
+// rank r goes to out[r - lo], or to out[hi - 1 - r] when `reversed` (the
+// order walked downwards).  `starts` is count_value_starts of the same
+// values.  Memory: hi - lo words, where sort_vertices needs n.
+void fill_order_range(arbor_voxel_type type, const void *values, uint32_t n, const std::vector<uint32_t> &starts,
+                      uint32_t lo, uint32_t hi, bool reversed, uint32_t *out);
 
 } // namespace arbor::topology

@@ -791,7 +791,7 @@ class Run(unittest.TestCase):
     def test_a_volume_too_large_for_the_memory_is_refused_with_what_it_needs(self):
         """The figures follow from the dimensions: bonsai is 256^3 u8; a run
         keeps the voxels, a filtered copy and 8 B/voxel, and the tree works
-        in 23 B/voxel at the least."""
+        in 20 B/voxel at the least (its order streamed)."""
         voxels = 256 ** 3
         volume = DATA / "bonsai/bonsai.vti"
         out = SCRATCH / "too-large.png"
@@ -802,23 +802,28 @@ class Run(unittest.TestCase):
         self.assertEqual(code, 1, err)
         self.assertIn(f"needs about {voxels * 10 / 1e6:.1f} MB", err)
         self.assertIn("and 100.0 MB of memory is available", err)
-        self.assertIn(f"contour tree, which needs {voxels * 23 / 1e6:.1f} MB more", err)
+        self.assertIn(f"contour tree, which needs {voxels * 20 / 1e6:.1f} MB more", err)
         # Unfiltered, the voxels fit; the tree's work space does not.
         code, _, err = arbor("run", volume, "--no-cache", "--filter", "none", "-o", out,
                              env={"ARBOR_MEMORY_AVAILABLE": "250000000"}, check=False)
         self.assertEqual(code, 1, err)
-        self.assertIn(f"the contour tree of 256 x 256 x 256 voxels needs about {voxels * 23 / 1e6:.1f} MB", err)
+        self.assertIn(f"the contour tree of 256 x 256 x 256 voxels needs about {voxels * 20 / 1e6:.1f} MB", err)
         self.assertFalse(out.exists())
-        # With room for both, the same run goes through: with 40 B/voxel the
-        # join and split sweeps run at once (27), with 25 one after the other
-        # (23); the tree, and so the image, is the same.
+        # With room, the same run goes through.  The tree takes the fastest
+        # plan whose work space is at most half of what is available: with
+        # 60 B/voxel both sweeps run at once (27), with 50 one after the
+        # other (23), with 25 the order is streamed (20).  The tree, and so
+        # the image, is the same.
         images = []
-        for per_voxel in (40, 25):
+        for per_voxel, plan in ((60, "parallel"), (50, "sequential"), (25, "streamed")):
             image = SCRATCH / f"fits-{per_voxel}.png"
             arbor("run", volume, "--no-cache", "--filter", "none", "--width", 64, "--height", 64, "-o", image,
                   env={"ARBOR_MEMORY_AVAILABLE": str(voxels * per_voxel)})
+            report = json.loads(image.with_suffix(".report.json").read_text())
+            self.assertEqual(report["contour_tree"]["memory_plan"], plan)
             images.append(image.read_bytes())
         self.assertEqual(images[0], images[1], "sweeps at once and one after the other")
+        self.assertEqual(images[0], images[2], "the order whole and streamed")
 
     def test_bad_inputs_are_refused_clearly(self):
         cases = [

@@ -444,13 +444,15 @@ inline std::vector<int64_t> node_of_vertices(const topology::ContourTree &tree)
 // sweeps run one after the other, both keeping their components in the merge
 // state, as the pipeline does when memory is short; compute_topology (with
 // no memory budget) runs them at once, so comparing the two compares both
-// ways of sweeping.
-inline topology::ContourTree staged_contour_tree(const Volume &volume)
+// ways of sweeping.  With `piece` > 0 (8- and 16-bit volumes) the order is
+// streamed in pieces of that many vertices, as for a whole-body CT.
+inline topology::ContourTree staged_contour_tree(const Volume &volume, uint32_t piece = 0)
 {
     using namespace topology;
     const Geometry &g = volume.geometry();
     const uint32_t n = static_cast<uint32_t>(volume.voxel_count());
-    UninitializedBuffer<uint32_t> order = sort_vertices(volume.type(), volume.data(), n);
+    OrderPieces order = piece > 0 ? OrderPieces(volume.type(), volume.data(), n, piece)
+                                  : OrderPieces(sort_vertices(volume.type(), volume.data(), n));
     const GridNeighbors grid(g.dims[0], g.dims[1], g.dims[2]);
     UninitializedBuffer<MergeVertex> state(n);
     compute_join_tree(grid, order, state.data(), nullptr);
