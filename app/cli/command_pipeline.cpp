@@ -8,10 +8,10 @@ namespace arbor::cli {
 
 namespace {
 
-pipeline::PipelineOptions options_for(Context &context, bool use_cache, bool release_imported_voxels)
+pipeline::PipelineOptions options_for(Context &context, bool use_cache, bool single_pass)
 {
     pipeline::PipelineOptions o;
-    o.release_imported_voxels = release_imported_voxels;
+    o.single_pass = single_pass;
     o.max_volume_bytes = context.max_volume_bytes;
     o.progress = &context.progress;
     o.fetch_input = fetch_pacs_input;
@@ -29,9 +29,9 @@ pipeline::PipelineOptions options_for(Context &context, bool use_cache, bool rel
 
 } // namespace
 
-CommandPipeline::CommandPipeline(Context &context, bool use_cache, bool release_imported_voxels)
+CommandPipeline::CommandPipeline(Context &context, bool use_cache, bool single_pass)
     : stop_(context.stop.get_token()),
-      pipeline_(context.registry, options_for(context, use_cache, release_imported_voxels)),
+      pipeline_(context.registry, options_for(context, use_cache, single_pass)),
       on_interrupt_(context.stop.get_token(), std::function<void()>([this] { pipeline_.cancel_all(); }))
 {
 }

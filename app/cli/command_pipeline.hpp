@@ -15,9 +15,10 @@ namespace arbor::cli {
 
 class CommandPipeline {
 public:
-    // `release_imported_voxels`: PipelineOptions::release_imported_voxels,
-    // for a command that filters once and never reads the input again.
-    CommandPipeline(Context &context, bool use_cache, bool release_imported_voxels = false);
+    // `single_pass`: PipelineOptions::single_pass, for a command that makes
+    // one pass through the stages and ends (results no later stage reads
+    // are let go as soon as they are through).
+    CommandPipeline(Context &context, bool use_cache, bool single_pass = false);
     pipeline::Pipeline &operator*() { return pipeline_; }
     pipeline::Pipeline *operator->() { return &pipeline_; }
 

@@ -153,9 +153,11 @@ void add_run_command(CLI::App &app, Context &context)
         const std::string ext = output.extension().string();
         if (ext != ".png" && ext != ".exr")
             throw UsageError(output.string() + ": images are written as .png or .exr");
-        // The input is filtered once; its voxels need not stay beside the
-        // filtered ones through the tree and the render.
-        CommandPipeline p(context, !a->input.no_cache(), /*release_imported_voxels=*/true);
+        // One pass: the input is filtered once and every point of a sweep
+        // is cut from the one tree, so the input's voxels need not stay
+        // beside the filtered ones through the tree and the render, nor the
+        // tree's segmentation beside the label map after the last cut.
+        CommandPipeline p(context, !a->input.no_cache(), /*single_pass=*/true);
         const pipeline::PluginCatalog &catalog = p->catalog();
 
         pipeline::Document base = base_document(*a, catalog);
@@ -182,6 +184,8 @@ void add_run_command(CLI::App &app, Context &context)
             a->look.apply(d.appearance, point, catalog);
             a->view.apply(d.view, catalog);
             p->set_document(d);
+            if (&point == &points.back())
+                p->declare_last_document();
             if (!report.import)
                 report.import = description_of(*p.run<Stage::Import>());
 
@@ -213,7 +217,10 @@ void add_run_command(CLI::App &app, Context &context)
             report.runs.push_back(std::move(run));
         }
         report.filtered = p.run<Stage::Filter>();
-        report.tree = p.run<Stage::ContourTree>();
+        // The tree as the pass left it: after the last cut, without its
+        // segmentation, and no longer current (a request would compute it
+        // again).
+        report.tree = p->latest<Stage::ContourTree>();
 
         if (!a->labels.empty()) {
             // One map when every run rendered the same labels, else one per run.

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
 
 namespace arbor::pipeline {
 
@@ -99,8 +100,10 @@ void Pipeline::update(const Document &resolved)
 {
     std::lock_guard lock(mutex_);
     const auto bump = [&](Group g, bool changed) {
-        if (changed)
+        if (changed) {
             revisions_[index_of(g)] = ++revision_counter_;
+            last_document_ = false; // declared of the document before
+        }
     };
     bump(Group::Input, resolved.input != document_.input);
     bump(Group::Filters, resolved.filters != document_.filters || resolved.auto_denoise != document_.auto_denoise);
@@ -152,6 +155,22 @@ void Pipeline::set_appearance(const Appearance &appearance)
 void Pipeline::set_view(const ViewChoice &view)
 {
     set_part(&Document::view, view);
+}
+
+void Pipeline::declare_last_document()
+{
+    if (!options_.single_pass)
+        throw std::logic_error("declare_last_document: the pipeline does not make a single pass");
+    std::shared_ptr<const void> tree;
+    {
+        std::lock_guard lock(mutex_);
+        last_document_ = true;
+        tree = segmentation_to_release_locked();
+    }
+    // Its cut was made already (a sweep whose last points differ in the
+    // look only): nothing will read the segmentation again.
+    if (tree)
+        release_segmentation(std::move(tree));
 }
 
 std::shared_ptr<Job> Pipeline::request(Stage stage)
@@ -211,7 +230,7 @@ void Pipeline::execute(const std::shared_ptr<Job> &job, std::shared_ptr<const Do
         job->start();
         std::shared_ptr<const void> result = compute_stage(job->stage(), context);
         // Freed below, not under the lock (they may be gigabytes).
-        std::shared_ptr<const void> replaced, released;
+        std::shared_ptr<const void> replaced, released, tree;
         {
             std::lock_guard lock(mutex_);
             ++slot.runs;
@@ -223,10 +242,15 @@ void Pipeline::execute(const std::shared_ptr<Job> &job, std::shared_ptr<const Do
                 slot.has_result = true;
             }
             std::erase_if(slot.active, [&](const auto &entry) { return entry.second == job; });
-            if (job->stage() == Stage::Filter && options_.release_imported_voxels)
+            if (job->stage() == Stage::Filter && options_.single_pass)
                 released = release_imported_voxels_locked(context.inputs[index_of(Stage::Import)], result);
+            if (job->stage() == Stage::Cut && options_.single_pass)
+                tree = segmentation_to_release_locked();
         }
-        // Released voxels are gone before the stages downstream start.
+        if (tree)
+            release_segmentation(std::move(tree));
+        // Released voxels and segmentation are gone before the stages
+        // downstream start.
         context.inputs = {};
         released.reset();
         job->succeed(std::move(result));
@@ -251,6 +275,62 @@ std::shared_ptr<const void> Pipeline::release_imported_voxels_locked(const std::
         return nullptr;
     import.has_result = false;
     return std::move(import.result);
+}
+
+std::shared_ptr<const void> Pipeline::segmentation_to_release_locked() const
+{
+    if (!options_.single_pass || !last_document_)
+        return nullptr;
+    const Slot &cut = *slots_[index_of(Stage::Cut)];
+    const Slot &tree = *slots_[index_of(Stage::ContourTree)];
+    // The last document's cut, made from the tree the stage holds now.
+    if (!cut.has_result || cut.key != key_of(Stage::Cut, revisions_) || !tree.has_result ||
+        tree.key != key_of(Stage::ContourTree, revisions_))
+        return nullptr;
+    if (std::static_pointer_cast<const ContourTreeResult>(tree.result)->tree.vertex_arc.empty())
+        return nullptr;
+    return tree.result;
+}
+
+namespace {
+
+// The tree as the rest of a pass reads it (the report: its nodes and arcs,
+// how long it took): everything but the per-voxel segmentation.
+std::shared_ptr<const ContourTreeResult> without_segmentation(const ContourTreeResult &whole)
+{
+    auto r = std::make_shared<ContourTreeResult>();
+    const topology::ContourTree &t = whole.tree;
+    r->tree.node_vertex = t.node_vertex;
+    r->tree.node_up = t.node_up;
+    r->tree.node_down = t.node_down;
+    r->tree.node_kind = t.node_kind;
+    r->tree.arc_lo = t.arc_lo;
+    r->tree.arc_hi = t.arc_hi;
+    r->tree.node_arc_offsets = t.node_arc_offsets;
+    r->tree.node_arcs = t.node_arcs;
+    // vertex_arc: let go.
+    r->timings = whole.timings;
+    r->seconds = whole.seconds;
+    r->from_cache = whole.from_cache;
+    r->memory_plan = whole.memory_plan;
+    return r;
+}
+
+} // namespace
+
+void Pipeline::release_segmentation(std::shared_ptr<const void> tree)
+{
+    std::shared_ptr<const void> kept = without_segmentation(*std::static_pointer_cast<const ContourTreeResult>(tree));
+    {
+        std::lock_guard lock(mutex_);
+        Slot &slot = *slots_[index_of(Stage::ContourTree)];
+        if (slot.result != tree)
+            return; // replaced meanwhile by a tree computed again: that one stays
+        // Not current: a request that needs the tree computes it again.
+        slot.result = std::move(kept);
+        slot.has_result = false;
+    }
+    // `tree` is freed here, or by the last stage still reading it.
 }
 
 void Pipeline::reap_locked()

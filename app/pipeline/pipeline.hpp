@@ -63,12 +63,28 @@ struct PipelineOptions {
     // (the log then goes to the host log).
     ProgressSink *progress = nullptr;
     LogSink *log = nullptr;
-    // A one-shot front (`arbor run`) sets it: once a filter chain has made
-    // a volume of its own, the imported voxels are let go - the import's
-    // result is dropped, so the filtered volume, the tree and the render do
-    // not share the memory with the input.  A later request of the import
-    // (or of a filter after a change of the chain) imports again.
-    bool release_imported_voxels = false;
+    // A one-shot front (`arbor run`) sets it: the front makes one pass -
+    // one input through one filter chain, then one document or a sweep of
+    // documents that differ below the contour tree (simplifier, cut, look,
+    // view) - and ends.  A result that no later stage of the pass reads is
+    // then let go as soon as its last reader is through, instead of being
+    // kept for a change of the choices that will not come:
+    //  - the imported voxels, once the filter chain has made a volume of its
+    //    own (the import's result is dropped: the report and the session
+    //    keep the import's description, not its voxels);
+    //  - the contour tree's segmentation (vertex_arc, 4 bytes a voxel), once
+    //    the cut of the pass's last document (declare_last_document) has
+    //    made its label map: the tree's latest result becomes the tree
+    //    without its segmentation (its nodes and arcs, timings, seconds) and
+    //    is no longer current.
+    // So the render does not hold the input or the segmentation beside the
+    // filtered volume, the label map and the renderer's own copies.  A
+    // later request of what was let go computes it again: a changed chain
+    // imports again, a tree or a new decomposition or cut computes the tree
+    // again (or reads it from the on-disk cache).  Fronts that keep results
+    // for the next change (the workstation, `arbor compare`) leave it off:
+    // nothing is then let go.
+    bool single_pass = false;
     // Added to the nice value of every job's thread (core/thread_priority.hpp):
     // the workstation's UI stays responsive while jobs use every core.
     int worker_nice = 0;
@@ -103,6 +119,15 @@ public:
     void set_appearance(const Appearance &appearance);
     void set_view(const ViewChoice &view);
     std::array<uint64_t, kGroupCount> revisions() const;
+
+    // Single pass (PipelineOptions::single_pass): the document now set is
+    // the pass's last - the front sets no other before it ends (a sweep
+    // says so at its last point, a run of one document at once).  Once the
+    // cut of this document is made (at once when it already is), the
+    // contour tree's segmentation goes: no later stage reads it.  Setting a
+    // different document afterwards takes the declaration back.  Throws
+    // std::logic_error on a pipeline that is not single-pass.
+    void declare_last_document();
 
     // Starts what is stale up to `stage`; returns the stage's job (already
     // ended when its result was current).
@@ -176,11 +201,20 @@ private:
     std::shared_ptr<const void> latest_result(Stage stage) const;
     arbor_camera camera_for(const Document &document, const FilterResult &filtered) const;
     void reap_locked();
-    // PipelineOptions::release_imported_voxels: drops the import's result
-    // after a filter job made new voxels from it; returns it, to be freed
-    // outside the lock.
+    // PipelineOptions::single_pass: drops the import's result after a
+    // filter job made new voxels from it; returns it, to be freed outside
+    // the lock.
     std::shared_ptr<const void> release_imported_voxels_locked(const std::shared_ptr<const void> &imported,
                                                                const std::shared_ptr<const void> &filtered);
+    // PipelineOptions::single_pass: whether the cut of the declared last
+    // document is made (its result current) and the tree's result still
+    // holds its segmentation; that tree result, else null.
+    std::shared_ptr<const void> segmentation_to_release_locked() const;
+    // Puts the tree without its segmentation in place of `tree`, the tree
+    // stage's result (unless another has replaced it meanwhile); `tree`'s
+    // memory goes when its last reader lets go.  Takes the lock itself: the
+    // copy of the nodes and arcs is made outside it.
+    void release_segmentation(std::shared_ptr<const void> tree);
     void update(const Document &resolved);
     template <class T> void set_part(T Document::*part, const T &value);
     Document resolve(const Document &document) const;
@@ -194,6 +228,7 @@ private:
     std::array<uint64_t, kGroupCount> revisions_{};
     uint64_t revision_counter_ = 0;
     uint64_t job_counter_ = 0;
+    bool last_document_ = false; // declare_last_document, until the document changes
     std::array<std::unique_ptr<Slot>, kStageCount> slots_;
     std::list<Worker> workers_;
 };

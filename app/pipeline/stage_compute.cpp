@@ -278,7 +278,6 @@ std::vector<std::string> kept_label_names(const topology::BranchDecomposition &d
 std::shared_ptr<const void> labels(StageContext &c)
 {
     const auto cut = c.input<Stage::Cut>();
-    const auto tree = c.input<Stage::ContourTree>();
     Stopwatch watch;
     auto r = std::make_shared<LabelsResult>(cut);
     r->names = kept_label_names(cut->decomposition->branches, cut->cut);

@@ -22,7 +22,7 @@ constexpr std::array<StageInfo, kStageCount> kStages{{
     {"contour_tree", {Stage::Filter}, 1, 0},
     {"decomposition", {Stage::ContourTree, Stage::Filter}, 2, bit(Group::Simplifier)},
     {"cut", {Stage::Decomposition, Stage::ContourTree, Stage::Filter}, 3, bit(Group::Cut)},
-    {"labels", {Stage::Cut, Stage::ContourTree}, 2, 0},
+    {"labels", {Stage::Cut}, 1, 0}, // the cut's label map, named: the tree is not read again
     {"depiction", {Stage::Cut}, 1, bit(Group::Appearance)},
     {"transfer_functions", {Stage::Depiction, Stage::Filter}, 2, bit(Group::Appearance)},
     {"render", {Stage::TransferFunctions, Stage::Labels, Stage::Filter}, 3, bit(Group::View)},

@@ -17,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <stdexcept>
 #include <thread>
 
 namespace arbor::pipeline {
@@ -199,12 +200,23 @@ TEST_F(PipelineStages, ResultsAreSnapshotsThatOutliveTheirSuccessors)
     EXPECT_NE(pipeline.latest<Stage::Render>()->image.rgba, copy.rgba);
 }
 
-// release_imported_voxels (`arbor run`): the input's voxels go once a filter
-// made its own, and come back by importing again when they are needed.
+// Waits (a while) for the last holder of a result to let it go: a job's
+// worker lets go of its job as it exits, which may come a moment after the
+// stage downstream is done.
+template <class T> bool expires(const std::weak_ptr<T> &held)
+{
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (!held.expired() && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    return held.expired();
+}
+
+// single_pass (`arbor run`): the input's voxels go once a filter made its
+// own, and come back by importing again when they are needed.
 TEST(Pipeline, ReleasedImportedVoxelsAreFreedAfterTheFilterAndImportedAgainWhenNeeded)
 {
     PipelineOptions options;
-    options.release_imported_voxels = true;
+    options.single_pass = true;
     Pipeline p(test::built_plugins(), options);
     Document d = phantom_document();
     d.filters = {{"gaussian", "", {{"sigma", "1"}}}};
@@ -212,12 +224,7 @@ TEST(Pipeline, ReleasedImportedVoxelsAreFreedAfterTheFilterAndImportedAgainWhenN
     std::weak_ptr<const Volume> imported = p.run<Stage::Import>()->volume;
     const auto filtered = p.run<Stage::Filter>();
     ASSERT_NE(filtered->volume.get(), nullptr);
-    // The import's worker lets its job go as it exits, which may come a
-    // moment after the filter is done.
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-    while (!imported.expired() && std::chrono::steady_clock::now() < deadline)
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    EXPECT_TRUE(imported.expired()) << "the imported voxels are still held";
+    EXPECT_TRUE(expires(imported)) << "the imported voxels are still held";
     EXPECT_FALSE(p.is_current(Stage::Import));
     EXPECT_TRUE(p.is_current(Stage::Filter));
 
@@ -243,6 +250,100 @@ TEST(Pipeline, ReleasedImportedVoxelsAreFreedAfterTheFilterAndImportedAgainWhenN
     p.set_document(d);
     p.run<Stage::Filter>();
     EXPECT_TRUE(p.is_current(Stage::Import));
+}
+
+// single_pass, the whole pass of `arbor run`: the imported voxels go after
+// the filter and the contour tree's segmentation (vertex_arc) after the cut
+// of the declared last document, before the render; the image is the one a
+// pipeline that keeps every result (the workstation's) renders, and no stage
+// runs twice.  That pipeline lets nothing go.
+TEST(Pipeline, ASinglePassLetsTheInputAndTheSegmentationGoAndTheNormalModeKeepsThem)
+{
+    Document d = phantom_document();
+    d.filters = {{"gaussian", "", {{"sigma", "1"}}}};
+    const std::size_t voxels = std::size_t{40} * 40 * 40;
+
+    Pipeline keeping(test::built_plugins());
+    keeping.set_document(d);
+    EXPECT_THROW(keeping.declare_last_document(), std::logic_error);
+    const auto reference = keeping.run<Stage::Render>();
+    const auto whole = keeping.latest<Stage::ContourTree>();
+    for (std::size_t s = 0; s < kStageCount; ++s)
+        EXPECT_EQ(keeping.is_current(static_cast<Stage>(s)), static_cast<Stage>(s) != Stage::Legend);
+    EXPECT_NE(keeping.latest<Stage::Import>()->volume, nullptr);
+    EXPECT_EQ(whole->tree.vertex_arc.size(), voxels);
+
+    PipelineOptions options;
+    options.single_pass = true;
+    Pipeline p(test::built_plugins(), options);
+    p.set_document(d);
+    p.declare_last_document();
+    const std::weak_ptr<const Volume> imported = p.run<Stage::Import>()->volume;
+    const std::weak_ptr<const ContourTreeResult> tree = p.run<Stage::ContourTree>();
+    EXPECT_TRUE(expires(imported)) << "the imported voxels are still held";
+    ASSERT_FALSE(tree.expired());
+    EXPECT_EQ(tree.lock()->tree.vertex_arc.size(), voxels); // kept until the cut is made
+
+    const auto image = p.run<Stage::Render>();
+    EXPECT_TRUE(expires(tree)) << "the tree with its segmentation is still held";
+    const auto kept = p.latest<Stage::ContourTree>();
+    ASSERT_NE(kept, nullptr);
+    EXPECT_TRUE(kept->tree.vertex_arc.empty());
+    EXPECT_EQ(kept->tree.node_count(), whole->tree.node_count()); // what the report reads is left
+    EXPECT_EQ(kept->tree.arc_count(), whole->tree.arc_count());
+    EXPECT_EQ(kept->tree.node_vertex, whole->tree.node_vertex);
+    EXPECT_EQ(kept->memory_plan, whole->memory_plan);
+    EXPECT_FALSE(p.is_current(Stage::Import));
+    EXPECT_FALSE(p.is_current(Stage::ContourTree));
+    for (const Stage s : {Stage::Filter, Stage::Decomposition, Stage::Cut, Stage::Labels, Stage::Render})
+        EXPECT_TRUE(p.is_current(s)) << stage_name(s);
+    EXPECT_EQ(image->image.rgba, reference->image.rgba);
+    EXPECT_EQ(p.run<Stage::Labels>()->labels, keeping.run<Stage::Labels>()->labels);
+    EXPECT_EQ(runs(p), runs(keeping)); // nothing computed twice
+}
+
+// A single-pass sweep (`arbor run --keep 8,6 --shape ramp,hat`): every
+// point's cut reads the one tree, so the segmentation stays until the last
+// point - and goes at once when the last point's cut was made at an earlier
+// point.  A cut asked for after the pass computes the tree again.
+TEST(Pipeline, ASinglePassSweepKeepsTheSegmentationUntilTheLastDocumentsCut)
+{
+    PipelineOptions options;
+    options.single_pass = true;
+    Pipeline p(test::built_plugins(), options);
+    Document d = phantom_document();
+    const std::size_t voxels = std::size_t{40} * 40 * 40;
+    p.set_document(d);
+    p.run<Stage::Render>();
+    d.cut.keep = 6;
+    p.set_document(d);
+    p.run<Stage::Render>();
+    EXPECT_TRUE(p.is_current(Stage::ContourTree));
+    EXPECT_EQ(p.latest<Stage::ContourTree>()->tree.vertex_arc.size(), voxels);
+
+    // The last point: the same cut, another look.
+    d.appearance.generator.params["shape"] = "hat";
+    p.set_document(d);
+    p.declare_last_document();
+    EXPECT_FALSE(p.is_current(Stage::ContourTree));
+    EXPECT_TRUE(p.latest<Stage::ContourTree>()->tree.vertex_arc.empty());
+    p.run<Stage::Render>();
+    auto r = runs(p);
+    EXPECT_EQ(r.at("contour_tree"), 1u);
+    EXPECT_EQ(r.at("cut"), 2u);
+    EXPECT_EQ(r.at("render"), 3u);
+
+    // Another document takes the declaration back: its cut computes the
+    // tree again, and keeps it.
+    d.cut.keep = 5;
+    p.set_document(d);
+    const auto labels = p.run<Stage::Labels>();
+    EXPECT_EQ(runs(p).at("contour_tree"), 2u);
+    EXPECT_TRUE(p.is_current(Stage::ContourTree));
+    EXPECT_EQ(p.latest<Stage::ContourTree>()->tree.vertex_arc.size(), voxels);
+    Pipeline keeping(test::built_plugins());
+    keeping.set_document(d);
+    EXPECT_EQ(labels->labels, keeping.run<Stage::Labels>()->labels);
 }
 
 TEST(Pipeline, BadChoicesAreRefusedAndLeaveTheDocumentAsItWas)
