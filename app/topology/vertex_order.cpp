@@ -40,9 +40,10 @@ inline uint32_t small_key(T x)
         return static_cast<uint32_t>(x);
 }
 
-// Counting sort for 8- and 16-bit values: one histogram, one scatter.
+// Where each value's run starts in the ascending order (value_starts[k]
+// for small_key k), one histogram and its prefix sums.
 template <class T>
-void counting_sort(const T *v, uint32_t n, uint32_t *order, const ProgressFn &progress)
+std::vector<uint32_t> value_starts(const T *v, uint32_t n)
 {
     constexpr std::size_t buckets = std::size_t{1} << (8 * sizeof(T));
     std::vector<uint32_t> start(buckets + 1, 0);
@@ -50,6 +51,14 @@ void counting_sort(const T *v, uint32_t n, uint32_t *order, const ProgressFn &pr
         ++start[small_key(v[i]) + 1];
     for (std::size_t b = 0; b < buckets; ++b)
         start[b + 1] += start[b];
+    return start;
+}
+
+// Counting sort for 8- and 16-bit values: one histogram, one scatter.
+template <class T>
+void counting_sort(const T *v, uint32_t n, uint32_t *order, const ProgressFn &progress)
+{
+    std::vector<uint32_t> start = value_starts(v, n);
     if (progress)
         progress(0.4);
     for (uint32_t i = 0; i < n; ++i)
@@ -126,18 +135,6 @@ void radix_sort64(const double *v, uint32_t n, uint32_t *order, const ProgressFn
             progress(0.2 * (d + 1));
     }
     std::memcpy(order, idx_a.data(), sizeof(uint32_t) * n);
-}
-
-template <class T>
-std::vector<uint32_t> value_starts(const T *v, uint32_t n)
-{
-    constexpr std::size_t buckets = std::size_t{1} << (8 * sizeof(T));
-    std::vector<uint32_t> start(buckets + 1, 0);
-    for (uint32_t i = 0; i < n; ++i)
-        ++start[small_key(v[i]) + 1];
-    for (std::size_t b = 0; b < buckets; ++b)
-        start[b + 1] += start[b];
-    return start;
 }
 
 // The scatter of counting_sort restricted to the values whose ranks meet
