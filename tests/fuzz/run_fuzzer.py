@@ -29,6 +29,25 @@ def last_status(log):
     return status
 
 
+def finding(log):
+    """The lines that say what a failed run found, in at most 16 lines: the
+    sanitizer's or libFuzzer's ERROR line, the top of the first stack, the
+    SUMMARY and where the input was written.  CI keeps only part of a long
+    log; this digest is printed first and again by fuzz.summary."""
+    lines = log.splitlines()
+    keep = []
+    start = next((i for i, line in enumerate(lines)
+                  if re.search(r"==\d+==\s*ERROR|ERROR: libFuzzer|runtime error:|ALARM: working on the last Unit", line)),
+                 None)
+    if start is not None:
+        keep.append(lines[start])
+        frames = [line.strip() for line in lines[start + 1:] if re.match(r"\s*#\d+ 0x", line)]
+        keep += frames[:8]
+    keep += [line for line in lines if line.startswith("SUMMARY:") or "Test unit written to" in line
+             or line.startswith("MS: ")][:4]
+    return keep[:16]
+
+
 def final_stats(log):
     stats = {}
     for m in re.finditer(r"^stat::(\w+):\s+(\d+)", log, re.MULTILINE):
@@ -95,12 +114,15 @@ def main():
            "new_units": stats.get("new_units_added", 0),
            "peak_rss_mb": stats.get("peak_rss_mb", 0)}
     run.update(last_status(text))
+    if rc != 0:
+        run["finding"] = finding(text) or ["libFuzzer exited with %d and printed no report" % rc]
     with open(stats_path, "w") as f:
         json.dump(run, f, indent=1)
     print("%(harness)s: %(executions)d executions in %(seconds).0f s (%(exec_per_sec)d/s)" % run +
           ", coverage %s edges, %s features, corpus %s inputs" % (run.get("cov"), run.get("ft"),
                                                                  run.get("corpus_units")))
     if rc != 0:
+        print("\nFINDING (digest):\n  " + "\n  ".join(run["finding"]))
         print("\n--- the end of %s ---" % log_path)
         print("\n".join(text.splitlines()[-80:]))
         kept = sorted(os.listdir(artifacts))
