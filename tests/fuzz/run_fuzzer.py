@@ -13,6 +13,7 @@ import argparse
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import time
@@ -99,10 +100,20 @@ def main():
     env = dict(os.environ)
     if "-detect_leaks=0" in args.option:
         env["ASAN_OPTIONS"] = ":".join(filter(None, [env.get("ASAN_OPTIONS", ""), "detect_leaks=0"]))
+    # The harnesses' scratch folders live under TMPDIR and go at exit, but
+    # libFuzzer leaves by _Exit on -max_total_time, a timeout or an OOM, so
+    # they get a TMPDIR of their own that this script removes.
+    scratch = os.path.join(args.work, args.name + ".tmp")
+    shutil.rmtree(scratch, ignore_errors=True)
+    os.makedirs(scratch)
+    env["TMPDIR"] = scratch
     print("running:", " ".join(command), flush=True)
     started = time.monotonic()
-    with open(log_path, "w") as log:
-        rc = subprocess.run(command, stdout=log, stderr=subprocess.STDOUT, env=env).returncode
+    try:
+        with open(log_path, "w") as log:
+            rc = subprocess.run(command, stdout=log, stderr=subprocess.STDOUT, env=env).returncode
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
     seconds = time.monotonic() - started
     with open(log_path, errors="replace") as f:
         text = f.read()
