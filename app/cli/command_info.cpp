@@ -61,6 +61,11 @@ nlohmann::json to_json(const pipeline::ImportResult &in, const VolumeStatistics 
     j["extent_mm"] = {g.spacing[0] * (g.dims[0] - 1), g.spacing[1] * (g.dims[1] - 1),
                       g.spacing[2] * (g.dims[2] - 1)};
     j["value_mapping"] = {{"scale", m.scale}, {"offset", m.offset}, {"unit", m.unit}};
+    if (const auto &hu = in.hounsfield_inferred)
+        j["value_mapping"]["unit_inferred"] = {{"air_peak", hu->air_peak},
+                                               {"air_fraction", hu->air_fraction},
+                                               {"tissue_peak", hu->tissue_peak},
+                                               {"tissue_fraction", hu->tissue_fraction}};
     j["stored"] = {{"min", st.min}, {"max", st.max}, {"mean", st.mean}, {"stddev", st.stddev}};
     j["physical"] = {{"min", std::min(m.physical(st.min), m.physical(st.max))},
                      {"max", std::max(m.physical(st.min), m.physical(st.max))},
@@ -110,6 +115,9 @@ void print_text(const pipeline::ImportResult &in, const VolumeStatistics &st)
         std::printf("Physical    %s .. %s %s(stored x %s + %s)\n", fixed(lo).c_str(),
                     fixed(hi).c_str(), m.unit.empty() ? "" : (m.unit + " ").c_str(),
                     fixed(m.scale).c_str(), fixed(m.offset).c_str());
+        if (const auto &hu = in.hounsfield_inferred)
+            std::printf("            HU read from the values, the file names no unit: %s\n",
+                        hu->describe().c_str());
         std::printf("Histogram   %s\n", sparkline(st.histogram, 48).c_str());
         std::printf("            p1 %s, median %s, p99 %s, mode bin %s (stored)\n",
                     fixed(st.quantile(0.01)).c_str(), fixed(st.quantile(0.5)).c_str(),

@@ -174,12 +174,19 @@ json input_json(const RunReport &r)
     const Volume &v = *r.filtered->volume;
     const Geometry &g = v.geometry();
     const pipeline::DecompositionResult &d = *r.runs.front().cut->decomposition;
-    return {{"source", r.filtered->source},
-            {"importer", r.import->importer.empty() ? "" : r.import->importer.id + " " + r.import->importer.version},
-            {"dims", {g.dims[0], g.dims[1], g.dims[2]}},
-            {"spacing_mm", {g.spacing[0], g.spacing[1], g.spacing[2]}},
-            {"voxel_type", arbor_voxel_type_name(v.type())},
-            {"value_range", {d.branches.global_min, d.branches.global_max}}};
+    json j = {{"source", r.filtered->source},
+              {"importer", r.import->importer.empty() ? "" : r.import->importer.id + " " + r.import->importer.version},
+              {"dims", {g.dims[0], g.dims[1], g.dims[2]}},
+              {"spacing_mm", {g.spacing[0], g.spacing[1], g.spacing[2]}},
+              {"voxel_type", arbor_voxel_type_name(v.type())},
+              {"value_range", {d.branches.global_min, d.branches.global_max}},
+              {"value_unit", v.mapping().unit}};
+    if (const auto &hu = r.import->hounsfield_inferred)
+        j["value_unit_inferred"] = {{"air_peak", hu->air_peak},
+                                    {"air_fraction", hu->air_fraction},
+                                    {"tissue_peak", hu->tissue_peak},
+                                    {"tissue_fraction", hu->tissue_fraction}};
+    return j;
 }
 
 void markdown_run(std::ostringstream &md, const RunReport &r, const RenderedRun &run, const json &j,
@@ -243,7 +250,10 @@ void write_run_report(const std::filesystem::path &path, const RunReport &r)
        << arbor_voxel_type_name(r.filtered->volume->type()) << ", spacing " << fixed(g.spacing[0], 3) << " x "
        << fixed(g.spacing[1], 3) << " x " << fixed(g.spacing[2], 3) << " mm"
        << (r.import->importer.empty() ? "" : ", read by " + r.import->importer.id + " " + r.import->importer.version)
-       << ".\n\n";
+       << ".";
+    if (const auto &hu = r.import->hounsfield_inferred)
+        md << " Values in Hounsfield units: the file names no unit, and they are a CT's (" << hu->describe() << ").";
+    md << "\n\n";
     std::vector<std::pair<std::string, double>> seconds;
     if (!sweep) {
         j = run_json(r, r.runs.front(), seconds);

@@ -76,9 +76,18 @@ std::shared_ptr<const void> import(StageContext &c)
         }
         PluginSlot::Lease importer = c.plugins.lease(setting, &c.job);
         require_parameters(*importer, setting);
-        r->volume = std::make_shared<const Volume>(
-            import_volume(*importer, local, &c.job, c.options.max_volume_bytes, c.stop(),
-                          [&c](const arbor_volume &header) { return admit_volume(header, c.document); }));
+        Volume volume = import_volume(*importer, local, &c.job, c.options.max_volume_bytes, c.stop(),
+                                      [&c](const arbor_volume &header) { return admit_volume(header, c.document); });
+        if (volume.mapping().unit.empty()) {
+            r->hounsfield_inferred = infer_hounsfield(volume);
+            if (r->hounsfield_inferred) {
+                volume.mapping().unit = "HU";
+                c.job.write(ARBOR_LOG_INFO, "",
+                            "values read as Hounsfield units: the file names no unit, and they are a CT's (" +
+                                r->hounsfield_inferred->describe() + ")");
+            }
+        }
+        r->volume = std::make_shared<const Volume>(std::move(volume));
         r->source = in.path.string();
         r->importer = {setting.id, importer->descriptor().version, read_params(*importer)};
     }

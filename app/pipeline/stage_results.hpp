@@ -12,6 +12,7 @@
 #include "visibility_balance.hpp"
 
 #include "core/background_level.hpp"
+#include "core/hounsfield_scale.hpp"
 #include "core/volume.hpp"
 #include "host/branch_tree_record.hpp"
 #include "host/rendering.hpp"
@@ -33,6 +34,9 @@ struct ImportResult {
     std::string source;    // the path, or "phantom:head"
     PluginSetting importer; // as used: the values read back after the import (empty for phantoms)
     std::string checksum;   // of the voxels and grid (volume_checksum.hpp)
+    // Set when the file named no unit and the values are those of a CT in
+    // Hounsfield units: the volume's mapping then says "HU".
+    std::optional<HounsfieldEvidence> hounsfield_inferred;
     double seconds = 0.0;
 };
 

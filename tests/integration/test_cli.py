@@ -85,6 +85,39 @@ class InfoOnSharedVolumes(unittest.TestCase):
         self.assertAlmostEqual(j["value_mapping"]["scale"], 2.2086, places=3)
         self.assertAlmostEqual(j["physical"]["max"], 563.2, delta=0.5)
 
+    def test_no_volume_but_a_ct_in_hu_is_read_as_hounsfield_units(self):
+        # The oracle is DICOM's own statement: the CT head's series says HU.
+        # The same values written to NRRD without the unit are recognised as
+        # HU from the values alone; every other shared volume (MR, 8-bit
+        # windowed CT exports, scaled CT angiography, synthetic fields) is not.
+        head = info(DATA / "dicom_ct_head_0051")
+        self.assertEqual(head["value_mapping"]["unit"], "HU")
+        self.assertNotIn("unit_inferred", head["value_mapping"])
+        converted = SCRATCH / "ct_head.nrrd"
+        arbor("convert", DATA / "dicom_ct_head_0051", "-o", converted)
+        raw = converted.read_bytes()
+        cut = raw.index(b"\n\n")
+        lines = raw[:cut].split(b"\n")
+        header = [l for l in lines if not l.startswith(b"arbor_value_unit")]
+        self.assertEqual(len(header), len(lines) - 1, "convert writes the unit into the NRRD")
+        unnamed = SCRATCH / "ct_head_no_unit.nrrd"
+        unnamed.write_bytes(b"\n".join(header) + raw[cut:])
+        j = info(unnamed)
+        self.assertEqual(j["value_mapping"]["unit"], "HU")
+        inferred = j["value_mapping"]["unit_inferred"]
+        self.assertAlmostEqual(inferred["air_peak"], -1000, delta=40)
+        self.assertTrue(-20 <= inferred["tissue_peak"] <= 60, inferred)
+        self.assertGreater(inferred["air_fraction"], 0.3)
+        _, out, _ = arbor("info", unnamed)
+        self.assertIn("HU read from the values", out)
+        for name in ("brain1", "lidc2", "mrhead", "colin27", "avm", "walnut", "tooth16", "hydrogen"):
+            with self.subTest(volume=name):
+                j = info(DATA / VOLUMES[name][0])
+                self.assertEqual(j["value_mapping"]["unit"], "")
+                self.assertNotIn("unit_inferred", j["value_mapping"])
+        mr = info(DATA / "dicom_mr_brain_vs_tumor")
+        self.assertEqual(mr["value_mapping"]["unit"], "")
+
     def test_text_output_names_the_essentials(self):
         _, out, _ = arbor("info", DATA / "walnut/walnut.nhdr")
         for word in ("Dimensions  128 x 96 x 114", "u16", "Spacing", "Origin", "Histogram", "median"):
