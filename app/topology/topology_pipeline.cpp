@@ -87,21 +87,48 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
     const Geometry &g = volume.geometry();
 
     result.plan = choose_tree_memory_plan(n, volume.type(), memory_budget);
+    const bool parallel = result.plan == TreeMemoryPlan::Parallel;
+
+    // Both sweeps fill one merge state.  They are independent: with memory
+    // for the split sweep's own component words, it runs on a second thread;
+    // otherwise after the join sweep, reusing the state's label words.
+    // Their memory is faulted in before they start, which on a virtual
+    // machine alone takes seconds (core/huge_pages.hpp).  With the parallel
+    // plan's memory and a counting sort (whose only other memory is the
+    // order), that happens on a second thread while the vertices are sorted
+    // on this one; the "memory" timing is then what is left of it after the
+    // sort.
+    UninitializedBuffer<MergeVertex> state;
+    UninitializedBuffer<uint32_t> split_components;
+    const auto fault_in = [&] {
+        state = UninitializedBuffer<MergeVertex>(n);
+        if (parallel)
+            split_components = UninitializedBuffer<uint32_t>(n);
+    };
+    std::exception_ptr fault_error;
+    std::jthread faulting; // joined before `state` goes, even when the sort throws
+    if (parallel && orders_by_counting(volume.type()))
+        faulting = std::jthread([&] {
+            try {
+                fault_in();
+            } catch (...) {
+                fault_error = std::current_exception();
+            }
+        });
     OrderPieces order = result.plan == TreeMemoryPlan::Streamed
                             ? OrderPieces(volume.type(), volume.data(), n,
                                           (n + kStreamedOrderPieces - 1) / kStreamedOrderPieces)
                             : OrderPieces(sort_vertices(volume.type(), volume.data(), n, report("sorting")));
     result.timings.push_back({"sort", watch.lap()});
 
-    // Both sweeps fill one merge state.  They are independent: with memory
-    // for the split sweep's own component words, it runs on a second thread;
-    // otherwise after the join sweep, reusing the state's label words.
     const GridNeighbors grid(g.dims[0], g.dims[1], g.dims[2]);
-    // Their memory is faulted in first, as a stage of its own: on a virtual
-    // machine that alone takes seconds (core/huge_pages.hpp).
-    UninitializedBuffer<MergeVertex> state(n);
-    const bool parallel = result.plan == TreeMemoryPlan::Parallel;
-    UninitializedBuffer<uint32_t> split_components(parallel ? n : 0);
+    if (faulting.joinable()) {
+        faulting.join();
+        if (fault_error)
+            std::rethrow_exception(fault_error);
+    } else {
+        fault_in();
+    }
     result.timings.push_back({"memory", watch.lap()});
     if (parallel) {
         std::exception_ptr split_error;
