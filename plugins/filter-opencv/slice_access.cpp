@@ -28,9 +28,14 @@ cv::Mat read_slice(const arbor_volume &v, int64_t k)
     cv::Mat m(static_cast<int>(v.dims[1]), static_cast<int>(v.dims[0]), CV_MAKETYPE(depth, 1));
     const std::size_t size = arbor_voxel_size(v.voxel_type);
     const char *base = static_cast<const char *>(v.voxels) + k * v.strides[2];
-    for (int j = 0; j < m.rows; ++j)
-        for (int i = 0; i < m.cols; ++i)
-            std::memcpy(m.ptr(j) + i * size, base + j * v.strides[1] + i * v.strides[0], size);
+    for (int j = 0; j < m.rows; ++j) {
+        const char *row = base + j * v.strides[1];
+        if (v.strides[0] == static_cast<int64_t>(size)) // rows are contiguous: one copy each
+            std::memcpy(m.ptr(j), row, size * m.cols);
+        else
+            for (int i = 0; i < m.cols; ++i)
+                std::memcpy(m.ptr(j) + i * size, row + i * v.strides[0], size);
+    }
     return m;
 }
 
@@ -38,9 +43,14 @@ void write_slice(arbor_volume &v, int64_t k, const cv::Mat &slice)
 {
     const std::size_t size = arbor_voxel_size(v.voxel_type);
     char *base = static_cast<char *>(v.voxels) + k * v.strides[2];
-    for (int j = 0; j < slice.rows; ++j)
-        for (int i = 0; i < slice.cols; ++i)
-            std::memcpy(base + j * v.strides[1] + i * v.strides[0], slice.ptr(j) + i * size, size);
+    for (int j = 0; j < slice.rows; ++j) {
+        char *row = base + j * v.strides[1];
+        if (v.strides[0] == static_cast<int64_t>(size))
+            std::memcpy(row, slice.ptr(j), size * slice.cols);
+        else
+            for (int i = 0; i < slice.cols; ++i)
+                std::memcpy(row + i * v.strides[0], slice.ptr(j) + i * size, size);
+    }
 }
 
 } // namespace arbor::opencv_filters

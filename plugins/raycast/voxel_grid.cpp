@@ -32,7 +32,7 @@ template <class Body> void for_slabs(int64_t nz, const sdk::Task &task, const Bo
 }
 
 template <class T>
-void copy_values(const arbor_volume &v, std::vector<float> &out, const sdk::Task &task)
+void copy_values(const arbor_volume &v, UnsetVector<float> &out, const sdk::Task &task)
 {
     const char *base = static_cast<const char *>(v.voxels);
     for_slabs(v.dims[2], task, [&](int64_t k) {
@@ -182,10 +182,15 @@ void compute_normals(VoxelGrid &g, const sdk::Task &task)
 
 } // namespace
 
+int LabelGrid::width_for(uint32_t max_label)
+{
+    return max_label < 256 ? 1 : max_label < 65536 ? 2 : 4;
+}
+
 void LabelGrid::assign_zero(std::size_t count, uint32_t max_label)
 {
     clear();
-    width_ = max_label < 256 ? 1 : max_label < 65536 ? 2 : 4;
+    width_ = width_for(max_label);
     size_ = count;
     if (width_ == 1)
         narrow_.assign(count, 0);
@@ -197,11 +202,18 @@ void LabelGrid::assign_zero(std::size_t count, uint32_t max_label)
 
 void LabelGrid::assign(const uint32_t *labels, std::size_t count, uint32_t max_label)
 {
-    assign_zero(count, max_label);
+    clear();
+    width_ = width_for(max_label);
+    size_ = count;
     if (width_ == 4) {
-        std::copy(labels, labels + count, wide_.begin());
+        wide_.assign(labels, labels + count);
         return;
     }
+    // Sized unwritten, then every label set once.
+    if (width_ == 1)
+        narrow_.resize(count);
+    else
+        medium_.resize(count);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, std::size_t{1} << 18),
                       [&](const tbb::blocked_range<std::size_t> &r) {
                           for (std::size_t v = r.begin(); v != r.end(); ++v)

@@ -4,6 +4,8 @@
 // indices.  Rebuilt only when the request's revisions or pointers change.
 #pragma once
 
+#include "unset_vector.hpp"
+
 #include <arbor/renderer.h>
 #include <arbor/sdk/task.hpp>
 
@@ -49,21 +51,22 @@ public:
     void clear();
 
 private:
+    static int width_for(uint32_t max_label); // bytes per label
     int width_ = 0; // 0: no labels
     std::size_t size_ = 0;
-    std::vector<uint8_t> narrow_;
-    std::vector<uint16_t> medium_;
-    std::vector<uint32_t> wide_;
+    UnsetVector<uint8_t> narrow_;
+    UnsetVector<uint16_t> medium_;
+    UnsetVector<uint32_t> wide_;
 };
 
 struct VoxelGrid {
     int64_t nx = 0, ny = 0, nz = 0;
-    std::vector<float> value; // i fastest
+    UnsetVector<float> value; // i fastest
     LabelGrid label;          // empty: every voxel has label 0
     uint32_t max_label = 0;
-    std::vector<int8_t> normal;  // [3 * voxels]: unit world gradient * 127; 0 where the field is flat
+    UnsetVector<int8_t> normal;  // [3 * voxels]: unit world gradient * 127; 0 where the field is flat
     // Gradient magnitude per voxel, 255 at the field's 99.5th percentile (and above).
-    std::vector<uint8_t> gradient;
+    UnsetVector<uint8_t> gradient;
     Vec3 origin{};               // LPS of voxel (0, 0, 0)
     Mat3 to_world{};             // voxel index offsets -> LPS mm (direction * spacing)
     Mat3 to_voxel{};             // its inverse
