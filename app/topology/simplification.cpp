@@ -58,16 +58,16 @@ std::vector<uint32_t> label_voxels(const ContourTree &tree, const BranchDecompos
                                    const SimplificationCut &cut)
 {
     const std::size_t n = tree.vertex_arc.size();
-    std::vector<uint32_t> labels(n);
-    if (tree.arc_count() == 0) {
-        std::fill(labels.begin(), labels.end(), 0u);
-        return labels;
-    }
+    if (tree.arc_count() == 0)
+        return std::vector<uint32_t>(n, 0u);
     std::vector<uint32_t> arc_label(tree.arc_count());
     for (std::size_t a = 0; a < arc_label.size(); ++a)
         arc_label[a] = cut.label_of[d.arc_branch[a]];
+    // Appended rather than sized: sizing would write every label twice.
+    std::vector<uint32_t> labels;
+    labels.reserve(n);
     for (std::size_t v = 0; v < n; ++v)
-        labels[v] = arc_label[tree.vertex_arc[v]];
+        labels.push_back(arc_label[tree.vertex_arc[v]]);
     // Nodes lie on several arcs: they take the branch that continues
     // through them.
     for (std::size_t x = 0; x < tree.node_count(); ++x)
