@@ -1,7 +1,8 @@
 // The OpenCV denoising filters through the ABI: on the noisy phantom they cut
 // the contour tree's branch count by a large factor while its structures -
 // the faint tumour included - survive ITri simplification; constant volumes
-// stay constant; types OpenCV cannot take are refused clearly.
+// stay constant; the Gaussian equals its convolution written out; types
+// OpenCV cannot take are refused clearly.
 #include "plugin_fixture.hpp"
 
 #include "io/phantom.hpp"
@@ -12,7 +13,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace arbor {
 namespace {
@@ -96,6 +99,55 @@ TEST(OpenCvFilters, ConstantVolumesStayConstant)
         for (int64_t i = 0; i < out.voxel_count(); ++i)
             ASSERT_EQ(out.as<int16_t>()[i], -700) << name << " voxel " << i;
     }
+}
+
+// The oracle: the 3D Gaussian written out, one axis after another, in
+// double precision: weights exp(-d^2 / 2 s^2) over |d| <= max(1, ceil(3 s))
+// voxels (s = sigma / spacing), normalised, the edge voxel repeated beyond
+// the volume.  The volume spans two of the filter's z-column blocks and more
+// slices than one step per core.
+TEST(OpenCvFilters, GaussianEqualsTheConvolutionWrittenOut)
+{
+    Geometry g;
+    g.dims = {70, 64, 23};
+    g.spacing = {0.7, 1.0, 2.5};
+    Volume v = Volume::allocate(ARBOR_VOXEL_F32, g, {}, uint64_t{1} << 30);
+    uint32_t state = 12345;
+    for (int64_t i = 0; i < v.voxel_count(); ++i) {
+        state = state * 1664525u + 1013904223u;
+        v.as<float>()[i] = static_cast<float>(state >> 8) / static_cast<float>(1u << 24) * 1000.0f - 300.0f;
+    }
+    const double sigma = 1.5;
+    PluginInstance f = filter("gaussian", {{"sigma", "1.5"}});
+    const Volume out = run_filter(f, v, nullptr, uint64_t{1} << 30);
+
+    const int64_t n[3] = {g.dims[0], g.dims[1], g.dims[2]};
+    std::vector<double> a(v.as<float>(), v.as<float>() + v.voxel_count()), b(a.size());
+    for (int axis = 0; axis < 3; ++axis) {
+        const double s = sigma / g.spacing[axis];
+        const int half = std::max(1, static_cast<int>(std::ceil(3 * s)));
+        std::vector<double> w(2 * half + 1);
+        double total = 0;
+        for (int d = -half; d <= half; ++d)
+            total += w[d + half] = std::exp(-d * d / (2 * s * s));
+        const int64_t step = axis == 0 ? 1 : axis == 1 ? n[0] : n[0] * n[1];
+        for (int64_t k = 0; k < n[2]; ++k)
+            for (int64_t j = 0; j < n[1]; ++j)
+                for (int64_t i = 0; i < n[0]; ++i) {
+                    const int64_t at[3] = {i, j, k}, v0 = i + n[0] * (j + n[1] * k);
+                    double sum = 0;
+                    for (int d = -half; d <= half; ++d) {
+                        const int64_t c = std::clamp<int64_t>(at[axis] + d, 0, n[axis] - 1);
+                        sum += w[d + half] * a[v0 + (c - at[axis]) * step];
+                    }
+                    b[v0] = sum / total;
+                }
+        std::swap(a, b);
+    }
+    double worst = 0;
+    for (int64_t i = 0; i < out.voxel_count(); ++i)
+        worst = std::max(worst, std::fabs(out.as<float>()[i] - a[i]));
+    EXPECT_LT(worst, 1e-3) << "largest difference from the written-out convolution";
 }
 
 TEST(OpenCvFilters, UnsupportedTypesAreRefusedClearly)
