@@ -2,7 +2,6 @@
 
 #include "voxel_type.hpp"
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
