@@ -114,6 +114,17 @@ public:
         return j.get<double>();
     }
 
+    // A whole number in [lo, hi] (both exact in a double), so that the
+    // caller's conversion to an integer type is defined.
+    double whole(const json &j, const std::string &where, double lo, double hi) const
+    {
+        const double x = number(j, where);
+        if (!(x >= lo && x <= hi) || x != std::floor(x))
+            fail(where + " must be a whole number from " + std::to_string(static_cast<int64_t>(lo)) + " to " +
+                 std::to_string(static_cast<int64_t>(hi)) + ", not " + j.dump());
+        return x;
+    }
+
     std::string text(const json &j, const std::string &where) const
     {
         if (!j.is_string())
@@ -332,10 +343,11 @@ SessionRead parse_session(const std::string &text, const fs::path &folder, const
         const json &p = input.at("phantom");
         PhantomInput ph;
         ph.kind = r.text(r.member(p, "kind", "input.phantom"), "input.phantom.kind");
-        ph.size = static_cast<int64_t>(r.number(r.member(p, "size", "input.phantom"), "input.phantom.size"));
+        ph.size = static_cast<int64_t>(r.whole(r.member(p, "size", "input.phantom"), "input.phantom.size", 8, 1024));
         ph.noise = p.contains("noise") ? r.number(p.at("noise"), "input.phantom.noise") : 0.0;
-        ph.blobs = p.contains("blobs") ? static_cast<int>(r.number(p.at("blobs"), "input.phantom.blobs")) : 0;
-        ph.seed = p.contains("seed") ? static_cast<uint64_t>(r.number(p.at("seed"), "input.phantom.seed")) : 1;
+        ph.blobs = p.contains("blobs") ? static_cast<int>(r.whole(p.at("blobs"), "input.phantom.blobs", 0, 1e6)) : 0;
+        ph.seed = p.contains("seed") ? static_cast<uint64_t>(r.whole(p.at("seed"), "input.phantom.seed", 0, 9.0e15))
+                                     : 1;
         d.input.phantom = ph;
     } else {
         const std::string saved = r.text(r.member(input, "path", "input"), "input.path");
