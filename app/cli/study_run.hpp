@@ -8,6 +8,7 @@
 #include "cli_context.hpp"
 #include "study_grid.hpp"
 
+#include "core/label_map.hpp"
 #include "io/label_colors.hpp"
 #include "pipeline/pipeline.hpp"
 #include "study/kept_overlap.hpp"
@@ -103,7 +104,7 @@ study::TruthMatches score_cut(const study::TruthLabels &truth, const pipeline::C
 struct PanelMaps {
     std::size_t cut = 0; // in the grid's cuts
     std::shared_ptr<const Volume> volume; // the first filter's volume
-    std::vector<std::shared_ptr<const std::vector<uint32_t>>> labels; // per simplifier
+    std::vector<std::shared_ptr<const LabelMap>> labels; // per simplifier
     std::vector<std::vector<KeptRecord>> kept;                        // per simplifier
 };
 

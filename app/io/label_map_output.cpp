@@ -21,7 +21,7 @@ std::filesystem::path color_table_path(const std::filesystem::path &labels_path)
 }
 
 void write_label_map(const std::filesystem::path &path, const Geometry &geometry, const std::string &content,
-                     const std::vector<uint32_t> &labels, const std::vector<std::string> &names)
+                     std::span<const uint32_t> labels, const std::vector<std::string> &names)
 {
     const bool wide = names.size() > 65535;
     Volume v = Volume::allocate(wide ? ARBOR_VOXEL_U32 : ARBOR_VOXEL_U16, geometry, {}, uint64_t{1} << 40);

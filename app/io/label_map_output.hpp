@@ -6,6 +6,7 @@
 #include "core/volume.hpp"
 
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,6 @@ std::filesystem::path color_table_path(const std::filesystem::path &labels_path)
 // names[k] for label k (no spaces; they are replaced).  Throws
 // std::runtime_error naming the file on failure.
 void write_label_map(const std::filesystem::path &path, const Geometry &geometry, const std::string &content,
-                     const std::vector<uint32_t> &labels, const std::vector<std::string> &names);
+                     std::span<const uint32_t> labels, const std::vector<std::string> &names);
 
 } // namespace arbor::io

@@ -262,7 +262,7 @@ std::shared_ptr<const void> cut(StageContext &c)
     }
     // The label map comes with the cut: the thickness of each structure,
     // which generators read, is measured on it.
-    r->labels = std::make_shared<const std::vector<uint32_t>>(topology::label_voxels(tree->tree, d->branches, r->cut));
+    r->labels = std::make_shared<const LabelMap>(topology::label_voxels(tree->tree, d->branches, r->cut));
     const Geometry &g = volume.geometry();
     r->shapes = topology::label_shapes(*r->labels, g.dims, g.spacing, static_cast<uint32_t>(r->cut.kept.size()));
     r->tree = std::make_unique<const BranchTreeRecord>(tree->tree, d->branches, r->cut, volume, &r->shapes);

@@ -73,7 +73,7 @@ struct CutResult {
     std::size_t speck_branches = 0;           // left out of the knee's choice as too small to be seen
     topology::SimplificationCut cut;
     // Per voxel its kept label, and per label the thickness of its voxels.
-    std::shared_ptr<const std::vector<uint32_t>> labels;
+    std::shared_ptr<const LabelMap> labels;
     std::vector<topology::LabelShape> shapes;
     // The kept branches as the record depictors and generators read (with
     // the thickness column); branch k of it is label k.
@@ -88,7 +88,7 @@ struct CutResult {
 struct LabelsResult {
     explicit LabelsResult(std::shared_ptr<const CutResult> from) : cut(std::move(from)), labels(*cut->labels) {}
     std::shared_ptr<const CutResult> cut;
-    const std::vector<uint32_t> &labels; // per voxel: the kept label (the cut's)
+    const LabelMap &labels; // per voxel: the kept label (the cut's)
     std::vector<std::string> names;      // per label: "root", "max-<branch>", "min-<branch>"
     uint64_t revision = 0;
     double seconds = 0.0;

@@ -60,7 +60,7 @@ uint64_t Contingency::region_voxels(std::size_t region) const
     return sum;
 }
 
-Contingency count_overlaps(const TruthLabels &truth, const std::vector<uint32_t> &kept_labels, std::size_t regions)
+Contingency count_overlaps(const TruthLabels &truth, std::span<const uint32_t> kept_labels, std::size_t regions)
 {
     if (kept_labels.size() != truth.index.size())
         throw std::invalid_argument("the ground truth has " + std::to_string(truth.index.size()) +

@@ -17,6 +17,7 @@
 #include "core/volume.hpp"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace arbor::study {
@@ -45,7 +46,7 @@ struct Contingency {
 
 // `kept_labels` holds per voxel its kept label (< regions); throws
 // std::invalid_argument when sizes or labels do not fit.
-Contingency count_overlaps(const TruthLabels &truth, const std::vector<uint32_t> &kept_labels, std::size_t regions);
+Contingency count_overlaps(const TruthLabels &truth, std::span<const uint32_t> kept_labels, std::size_t regions);
 
 // Each region together with every region below it: `kept_parent[k]` is the
 // nearest kept ancestor of region k (-1 for the root).

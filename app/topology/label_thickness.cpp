@@ -1,36 +1,62 @@
 #include "label_thickness.hpp"
 
+#include "core/parallel_ranges.hpp"
+
 #include <cmath>
 
 namespace arbor::topology {
 
-std::vector<LabelShape> label_shapes(const std::vector<uint32_t> &labels, const std::array<int64_t, 3> &dims,
+std::vector<LabelShape> label_shapes(std::span<const uint32_t> labels, const std::array<int64_t, 3> &dims,
                                      const std::array<double, 3> &spacing, uint32_t label_count)
 {
     const int64_t nx = dims[0], ny = dims[1], nz = dims[2];
     const double voxel = spacing[0] * spacing[1] * spacing[2];
     const double face[3] = {spacing[1] * spacing[2], spacing[0] * spacing[2], spacing[0] * spacing[1]};
+    // Counted in whole voxels and faces, a range of slices per core, so the
+    // result does not depend on how the slices were shared out.
+    struct Counts {
+        std::vector<uint64_t> voxels, faces[3];
+    };
+    constexpr std::size_t kSlabSlices = 8;
+    std::vector<Counts> parts(range_parts(static_cast<std::size_t>(nz), kSlabSlices));
+    for_ranges(static_cast<std::size_t>(nz), kSlabSlices, [&](std::size_t k0, std::size_t k1, std::size_t part) {
+        Counts &c = parts[part];
+        c.voxels.assign(label_count, 0);
+        for (auto &f : c.faces)
+            f.assign(label_count, 0);
+        for (int64_t k = static_cast<int64_t>(k0); k < static_cast<int64_t>(k1); ++k)
+            for (int64_t j = 0; j < ny; ++j)
+                for (int64_t i = 0; i < nx; ++i) {
+                    const std::size_t v = static_cast<std::size_t>(i + nx * (j + ny * k));
+                    const uint32_t l = labels[v];
+                    ++c.voxels[l];
+                    // Each face between two labels, once, for both sides.
+                    const auto boundary = [&](std::size_t u, int axis) {
+                        if (labels[u] != l) {
+                            ++c.faces[axis][l];
+                            ++c.faces[axis][labels[u]];
+                        }
+                    };
+                    if (i + 1 < nx)
+                        boundary(v + 1, 0);
+                    if (j + 1 < ny)
+                        boundary(v + static_cast<std::size_t>(nx), 1);
+                    if (k + 1 < nz)
+                        boundary(v + static_cast<std::size_t>(nx * ny), 2);
+                }
+    });
     std::vector<double> volume(label_count, 0.0), area(label_count, 0.0);
-    for (int64_t k = 0; k < nz; ++k)
-        for (int64_t j = 0; j < ny; ++j)
-            for (int64_t i = 0; i < nx; ++i) {
-                const std::size_t v = static_cast<std::size_t>(i + nx * (j + ny * k));
-                const uint32_t l = labels[v];
-                volume[l] += voxel;
-                // Each face between two labels, once, for both sides.
-                const auto boundary = [&](std::size_t u, int axis) {
-                    if (labels[u] != l) {
-                        area[l] += face[axis];
-                        area[labels[u]] += face[axis];
-                    }
-                };
-                if (i + 1 < nx)
-                    boundary(v + 1, 0);
-                if (j + 1 < ny)
-                    boundary(v + static_cast<std::size_t>(nx), 1);
-                if (k + 1 < nz)
-                    boundary(v + static_cast<std::size_t>(nx * ny), 2);
-            }
+    for (uint32_t l = 0; l < label_count; ++l) {
+        uint64_t voxels = 0, faces[3] = {0, 0, 0};
+        for (const Counts &p : parts) {
+            voxels += p.voxels[l];
+            for (int a = 0; a < 3; ++a)
+                faces[a] += p.faces[a][l];
+        }
+        volume[l] = static_cast<double>(voxels) * voxel;
+        area[l] = static_cast<double>(faces[0]) * face[0] + static_cast<double>(faces[1]) * face[1] +
+                  static_cast<double>(faces[2]) * face[2];
+    }
     constexpr double kStaircase = 1.5; // voxel faces over the smooth surface they approximate
     std::vector<LabelShape> out(label_count);
     for (uint32_t l = 0; l < label_count; ++l) {

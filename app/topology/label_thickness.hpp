@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace arbor::topology {
@@ -25,7 +26,7 @@ struct LabelShape {
 // `labels`: one per voxel, i fastest, each < label_count.  A label that
 // touches no other (it fills the grid) is as thick as the cube root of its
 // volume (compactness 1); a label without voxels gets zeros.
-std::vector<LabelShape> label_shapes(const std::vector<uint32_t> &labels, const std::array<int64_t, 3> &dims,
+std::vector<LabelShape> label_shapes(std::span<const uint32_t> labels, const std::array<int64_t, 3> &dims,
                                      const std::array<double, 3> &spacing, uint32_t label_count);
 
 } // namespace arbor::topology

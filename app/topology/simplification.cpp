@@ -1,5 +1,7 @@
 #include "simplification.hpp"
 
+#include "core/parallel_ranges.hpp"
+
 #include <algorithm>
 #include <numeric>
 
@@ -54,20 +56,24 @@ SimplificationCut cut_by_count(const BranchDecomposition &d, std::size_t count, 
     return finish(d, keep);
 }
 
-std::vector<uint32_t> label_voxels(const ContourTree &tree, const BranchDecomposition &d,
+LabelMap label_voxels(const ContourTree &tree, const BranchDecomposition &d,
                                    const SimplificationCut &cut)
 {
     const std::size_t n = tree.vertex_arc.size();
     if (tree.arc_count() == 0)
-        return std::vector<uint32_t>(n, 0u);
+        return LabelMap(n, 0u);
     std::vector<uint32_t> arc_label(tree.arc_count());
     for (std::size_t a = 0; a < arc_label.size(); ++a)
         arc_label[a] = cut.label_of[d.arc_branch[a]];
-    // Appended rather than sized: sizing would write every label twice.
-    std::vector<uint32_t> labels;
-    labels.reserve(n);
-    for (std::size_t v = 0; v < n; ++v)
-        labels.push_back(arc_label[tree.vertex_arc[v]]);
+    // Sized (the pages are faulted in and zeroed once, on this thread), then
+    // filled on all cores: the gather is most of the work.
+    LabelMap labels(n);
+    const uint32_t *arc = tree.vertex_arc.data();
+    uint32_t *out = labels.data();
+    for_ranges(n, std::size_t{1} << 20, [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t v = begin; v < end; ++v)
+            out[v] = arc_label[arc[v]];
+    });
     // Nodes lie on several arcs: they take the branch that continues
     // through them.
     for (std::size_t x = 0; x < tree.node_count(); ++x)

@@ -13,6 +13,8 @@
 
 #include "branch_decomposition.hpp"
 
+#include "core/label_map.hpp"
+
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -36,7 +38,7 @@ SimplificationCut cut_by_count(const BranchDecomposition &d, std::size_t count,
                                const std::vector<bool> &eligible = {});
 
 // Voxel -> index in cut.kept, for every voxel of the tree's volume.
-std::vector<uint32_t> label_voxels(const ContourTree &tree, const BranchDecomposition &d,
+LabelMap label_voxels(const ContourTree &tree, const BranchDecomposition &d,
                                    const SimplificationCut &cut);
 
 } // namespace arbor::topology

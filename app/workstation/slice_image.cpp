@@ -26,8 +26,8 @@ void slice_image(const Volume &volume, const SliceGeometry &s, int64_t slice, co
     out.rgba.resize(static_cast<std::size_t>(s.width * s.height * 4));
     const auto &dims = volume.geometry().dims;
     slice = std::clamp<int64_t>(slice, 0, s.count - 1);
-    const bool labelled = overlay.labels && overlay.colors &&
-                          overlay.labels->size() == static_cast<std::size_t>(volume.voxel_count());
+    const bool labelled = !overlay.labels.empty() && overlay.colors &&
+                          overlay.labels.size() == static_cast<std::size_t>(volume.voxel_count());
     const auto index = [&](int64_t x, int64_t y) {
         const auto ijk = s.voxel(x, y, slice);
         return ijk[0] + dims[0] * (ijk[1] + dims[1] * ijk[2]);
@@ -44,7 +44,7 @@ void slice_image(const Volume &volume, const SliceGeometry &s, int64_t slice, co
                 const double g = window.grey(mapping.physical(static_cast<double>(voxels[v])));
                 std::array<double, 3> c{g, g, g};
                 if (labelled) {
-                    const uint32_t l = (*overlay.labels)[static_cast<std::size_t>(v)];
+                    const uint32_t l = overlay.labels[static_cast<std::size_t>(v)];
                     // The root (label 0) is everything not kept: left uncoloured.
                     const bool hidden = overlay.hidden && l < overlay.hidden->size() && (*overlay.hidden)[l];
                     if (l > 0 && l < overlay.colors->size() && !hidden) {

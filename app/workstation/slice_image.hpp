@@ -12,12 +12,13 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace arbor::workstation {
 
 struct LabelOverlay {
-    const std::vector<uint32_t> *labels = nullptr;        // per voxel; null: no overlay
+    std::span<const uint32_t> labels;                      // per voxel; empty: no overlay
     const std::vector<std::array<float, 3>> *colors = nullptr; // per label, sRGB [0, 1]
     double opacity = 0.35;
     std::optional<uint32_t> selected;

@@ -60,7 +60,7 @@ void SliceView::draw(Workstation &ws)
     if (!(key == shown_) || texture_.empty()) {
         LabelOverlay overlay;
         if (labelled) {
-            overlay.labels = &labels->labels;
+            overlay.labels = labels->labels;
             overlay.colors = &overlay_colors_;
             overlay.opacity = v.overlay_opacity;
             overlay.selected = key.selected;

@@ -229,7 +229,7 @@ TEST(SliceImage, GreyThroughTheWindowAndTheOverlay)
     std::vector<uint32_t> labels(static_cast<std::size_t>(v.voxel_count()), 0);
     labels[13] = 1;
     const std::vector<std::array<float, 3>> colors{{0, 0, 0}, {1, 0, 0}};
-    LabelOverlay overlay{&labels, &colors, 1.0, std::nullopt, nullptr};
+    LabelOverlay overlay{labels, &colors, 1.0, std::nullopt, nullptr};
     im = slice_image(v, s, 1, w, overlay);
     EXPECT_EQ(im.rgba[4 * 1 + 0], 255);
     EXPECT_EQ(im.rgba[4 * 1 + 1], 0);

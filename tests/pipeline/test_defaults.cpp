@@ -116,6 +116,27 @@ TEST(LabelShapes, ThicknessOfASlabABallAndAShell)
     EXPECT_NEAR(t[1].compactness, s[1].compactness, 1e-9);
 }
 
+TEST(LabelShapes, FacesBetweenTheSlabsOfDifferentCoresCount)
+{
+    // Two blocks of 5 x 3 x 16 voxels stacked in z: the slices are shared
+    // out between cores (two on this machine), and the one face plane
+    // between the labels lies where the halves meet.  Counted by hand:
+    // 240 voxels each, 15 faces between them (the grid's border does not
+    // count), thickness 1.5 x 2 x volume / area.
+    constexpr int64_t nx = 5, ny = 3, nz = 32;
+    std::vector<uint32_t> labels(static_cast<std::size_t>(nx * ny * nz), 0);
+    for (std::size_t v = static_cast<std::size_t>(nx * ny * nz / 2); v < labels.size(); ++v)
+        labels[v] = 1;
+    const std::array<double, 3> spacing{0.5, 2.0, 1.5};
+    const auto s = topology::label_shapes(labels, {nx, ny, nz}, spacing, 3);
+    const double volume = 240 * 0.5 * 2.0 * 1.5, area = 15 * 0.5 * 2.0;
+    for (int l = 0; l < 2; ++l) {
+        EXPECT_NEAR(s[l].thickness_mm, 1.5 * 2 * volume / area, 1e-9) << "label " << l;
+        EXPECT_NEAR(s[l].compactness, s[l].thickness_mm / std::cbrt(volume), 1e-9) << "label " << l;
+    }
+    EXPECT_EQ(s[2].thickness_mm, 0.0); // no voxels
+}
+
 TEST(CriticalPoints, TwoBumpsAndAPit)
 {
     // Two Gaussian bumps and a pit on a tilted plane: the grid's only

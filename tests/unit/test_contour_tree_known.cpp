@@ -447,11 +447,11 @@ TEST(ContourTreeKnown, TwoBumpsAndASaddle)
     EXPECT_EQ(r.branches.node_branch[2], 1u);
 
     // Two kept branches: v25, v26, v27 carry the bump's label, all else the root's.
-    const std::vector<uint32_t> labels = label_voxels(r.tree, r.branches, cut_by_count(r.branches, 2));
+    const LabelMap labels = label_voxels(r.tree, r.branches, cut_by_count(r.branches, 2));
     for (uint32_t v = 0; v < 35; ++v)
         EXPECT_EQ(labels[v], (v == 25 || v == 26 || v == 27) ? 1u : 0u) << "vertex " << v;
-    const std::vector<uint32_t> one = label_voxels(r.tree, r.branches, cut_by_count(r.branches, 1));
-    EXPECT_EQ(one, std::vector<uint32_t>(35, 0u));
+    const LabelMap one = label_voxels(r.tree, r.branches, cut_by_count(r.branches, 1));
+    EXPECT_EQ(one, LabelMap(35, 0u));
 }
 
 // Importance decides which branch continues at a saddle.  9x3x1, background
@@ -558,7 +558,7 @@ TEST(ContourTreeKnown, SingleVoxelIsOneLoneNode)
     EXPECT_EQ(root.saddle_node, 0u);
     expect_measures(root, {0, 1, 0});
     EXPECT_EQ(pair_set(r, volume), (std::set<PairKey>{{-1, 0, 0}}));
-    EXPECT_EQ(label_voxels(r.tree, r.branches, cut_by_count(r.branches, 3)), std::vector<uint32_t>{0u});
+    EXPECT_EQ(label_voxels(r.tree, r.branches, cut_by_count(r.branches, 3)), LabelMap{0u});
 }
 
 // ---- (f) a pit: a minimum inside a ring ------------------------------------------------
@@ -736,14 +736,14 @@ TEST_F(Crater, CutKeepsAChildWhoseParentIsRemoved)
     EXPECT_EQ(cut.kept_index, (std::vector<int32_t>{0, -1, 1}));
     EXPECT_EQ(cut.label_of, (std::vector<uint32_t>{0, 0, 1}));
     EXPECT_EQ(cut.kept_parent, (std::vector<int32_t>{-1, 0}));
-    const std::vector<uint32_t> labels = label_voxels(r.tree, r.branches, cut);
+    const LabelMap labels = label_voxels(r.tree, r.branches, cut);
     for (uint32_t v = 0; v < 45; ++v)
         EXPECT_EQ(labels[v], v == 20 ? 1u : 0u) << "vertex " << v;
     // The two most important branches are the same two.
     EXPECT_EQ(cut_by_count(r.branches, 2).kept, cut.kept);
     // Keeping everything: the rim and the saddle s (on the peak's branch,
     // which continues through it) are the peak's; the pit is the pit's.
-    const std::vector<uint32_t> all = label_voxels(r.tree, r.branches, cut_by_threshold(r.branches, 0.0));
+    const LabelMap all = label_voxels(r.tree, r.branches, cut_by_threshold(r.branches, 0.0));
     for (uint32_t v : {10u, 11u, 12u, 19u, 21u, 28u, 29u, 30u})
         EXPECT_EQ(all[v], 1u) << "vertex " << v;
     EXPECT_EQ(all[20], 2u);

@@ -880,7 +880,7 @@ std::string check_cut(const Sample &s, const SimplificationCut &cut, const std::
         if (cut.kept_parent[i] != expected)
             return "kept_parent of kept branch " + std::to_string(want[i]);
     }
-    const std::vector<uint32_t> labels = label_voxels(t, d, cut);
+    const LabelMap labels = label_voxels(t, d, cut);
     if (labels.size() != s.field.size())
         return "label_voxels labels " + std::to_string(labels.size()) + " voxels";
     const std::vector<int64_t> node_of = test::node_of_vertices(t);

@@ -151,8 +151,8 @@ TEST(RegionScores, SubtreeRegionsAddEveryKeptDescendant)
 TEST(RegionScores, RefusesMismatchedSizesAndLabels)
 {
     const TruthLabels truth = read_truth(label_volume({1, 0}));
-    EXPECT_THROW(count_overlaps(truth, {0, 0, 0}, 1), std::invalid_argument);
-    EXPECT_THROW(count_overlaps(truth, {0, 5}, 2), std::invalid_argument);
+    EXPECT_THROW(count_overlaps(truth, std::vector<uint32_t>{0, 0, 0}, 1), std::invalid_argument);
+    EXPECT_THROW(count_overlaps(truth, std::vector<uint32_t>{0, 5}, 2), std::invalid_argument);
 }
 
 } // namespace
