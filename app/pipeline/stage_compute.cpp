@@ -453,12 +453,15 @@ std::shared_ptr<const void> render(StageContext &c)
                     layout.voxels[l] += 1;
                 for (const topology::LabelShape &shape : cut.shapes)
                     layout.sheet.push_back(shape.compactness > 0 && shape.compactness < 0.2);
+                BalanceTargets targets;
+                if (c.document.appearance.selected && *c.document.appearance.selected > 0)
+                    targets.focus = *c.document.appearance.selected;
                 memo->balance = balance_visibility(
                     *tf->functions, layout, volume.geometry(),
                     [&](const TransferFunctions &f, const arbor_camera &cam, uint32_t size) {
                         return preview(f, cam, size, size);
                     },
-                    {}, c.stop());
+                    targets, c.stop());
             } catch (const std::invalid_argument &e) {
                 c.job.write(ARBOR_LOG_INFO, "", std::string("visibility not balanced: ") + e.what());
                 memo->balanced = false;

@@ -71,8 +71,9 @@ std::vector<double> targets_for(const std::vector<double> &s, const std::vector<
             fixed[0] = changed = true;
         }
         for (std::size_t b = 1; b < n; ++b) {
-            if (!fixed[b] && out[b] < floor) {
-                out[b] = floor;
+            const double least = static_cast<int32_t>(b) == t.focus ? std::max(floor, t.focus_floor) : floor;
+            if (!fixed[b] && out[b] < least) {
+                out[b] = least;
                 fixed[b] = changed = true;
             } else if (!fixed[b] && b < sheet.size() && sheet[b] && out[b] > t.sheet_cap) {
                 out[b] = t.sheet_cap;
@@ -136,8 +137,12 @@ BalanceResult balance_visibility(const TransferFunctions &tf, const BranchLayout
         // still short of its floor though already many times denser.
         std::vector<double> peel(n, 1.0);
         const double structures = std::accumulate(voxels.begin() + 1, voxels.end(), 0.0);
+        // The selected structure's ancestors are peeled as soon as it is
+        // short of its floor: it is what the person wants to see.
         for (std::size_t b = 1; b < n; ++b)
-            if (shares[b] < 0.5 * want[b] && r.scale[b] * step[b] > 8.0 * r.scale[0] &&
+            if ((static_cast<int32_t>(b) == targets.focus
+                     ? shares[b] < 0.9 * want[b]
+                     : shares[b] < 0.5 * want[b] && r.scale[b] * step[b] > 8.0 * r.scale[0]) &&
                 voxels[b] >= 1e-4 * structures)
                 for (int32_t a = parent[b]; a > 0; a = parent[static_cast<std::size_t>(a)]) { // the root keeps its floor
                     peel[static_cast<std::size_t>(a)] = std::min(peel[static_cast<std::size_t>(a)], 0.6);

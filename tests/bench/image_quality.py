@@ -8,7 +8,8 @@ side the visible content spans) and the goals of issue 13:
   - the outermost structure (the root branch) <= 40 %,
   - on CT the branch holding the bone among the three most visible,
   - on brain1 the branch of the tumour (given by its mask) among the three most
-    visible;
+    visible, by default and with that branch selected (--select, as a click in
+    the workstation would);
 then a sheet per volume: Arbor's default beside 3D Slicer's one-click presets
 rendered by VTK's CPU ray caster on the same view (../shared/tools/slicer_preset.py),
 and one sheet of all of them (README.md shows it).
@@ -83,6 +84,10 @@ def sheet(tiles, columns):
     return out
 
 
+def ordinal(n):
+    return f"{n}{'st' if n == 1 else 'nd' if n == 2 else 'rd' if n == 3 else 'th'}"
+
+
 def tumour_label(report, labels_nrrd, mask_nrrd):
     """The kept label holding most of the tumour mask's voxels."""
     import gzip
@@ -136,12 +141,24 @@ def main():
         elif target:
             t = tumour_label(report, out / f"{name}-labels.nrrd", target)
             goals.append(f"tumour={t} top3" if t in order[:3] else f"tumour={t} not top3")
+            # As a radiologist would look at it: the tumour's branch selected
+            # (a click in the workstation, --select here) is brought forward.
+            selected_png = out / f"{name}-arbor-selected.png"
+            run([args.arbor, "run", *inputs, "--width", size, "--height", size, "-o", selected_png,
+                 "--select", t, *args.extra.split()])
+            selected = [b["visibility"] for b in
+                        json.loads((out / f"{name}-arbor-selected.report.json").read_text())["branches"]]
+            rank = 1 + sum(v > selected[t] for v in selected)
+            goals.append(f"selected: {ordinal(rank)} {100 * selected[t]:.1f}%")
         frame = framing(png)
         print(f"{name:20} {report['simplification']['branches_before']:>8} {len(shares):>4} {frame:6.2f} "
               f"{100 * shares[0]:5.1f}% {100 * min(non_root or [0]):5.1f}% {' '.join(goals):>24}  {seconds:.1f}")
         print("    visibility by label: " + " ".join(f"{b}:{100 * shares[b]:.1f}%" for b in order))
         # Slicer's presets on the same view, from the same (filtered) volume.
         tiles = [label_over(Image.open(png).convert("RGB"), f"Arbor default: {name}")]
+        if target and target != "bone":
+            tiles.append(label_over(Image.open(out / f"{name}-arbor-selected.png").convert("RGB"),
+                                    "Arbor, the tumour selected"))
         nrrd = out / f"{name}.nrrd"
         run([args.arbor, "convert", *inputs, "-o", nrrd])
         for preset in presets:
@@ -153,7 +170,7 @@ def main():
                 print(f"    {preset}: {e}")
         row = sheet(tiles, len(tiles))
         row.save(out / f"{name}-sheet.png")
-        overview.append(sheet(tiles + [Image.new("RGB", tiles[0].size, (20, 20, 20))] * (3 - len(tiles)), 3))
+        overview.append(sheet(tiles + [Image.new("RGB", tiles[0].size, (20, 20, 20))] * max(0, 3 - len(tiles)), 3))
     if overview:
         sheet(overview, 1).save(out / "defaults-sheet.png")
         print(f"\nsheets: {out}/<volume>-sheet.png, all: {out}/defaults-sheet.png")

@@ -309,6 +309,48 @@ TEST(VisibilityBalance, EveryStructureGetsItsShareAndTheBodyItsBounds)
     EXPECT_GE(scene.renders, 3); // three views per measurement
 }
 
+TEST(VisibilityBalance, ASelectedStructureIsBroughtForward)
+{
+    // The same scene; the small solid inside the slab (4 % of the pixels) is
+    // selected.  Without the selection it ends at its floor, below the
+    // slab, the body and the sheet; selected, it is made as dense as it can
+    // be and the slab in front of it is peeled, the body within its bounds.
+    const std::vector<float> densest = {0.5f, 0.3f, 0.02f, 0.4f, 0.01f};
+    TransferFunctions tf(5, 2, 1.0);
+    for (uint32_t b = 0; b < 5; ++b) {
+        const float rgba[8] = {1, 1, 1, 0, 1, 1, 1, densest[b]};
+        tf.assign(b, {0.0, 1.0}, rgba);
+    }
+    pipeline::BranchLayout layout;
+    layout.parent = {-1, 0, 1, 0, 0};
+    layout.voxels = {1e6, 6e4, 4e3, 3e4, 1e3};
+    layout.sheet = {false, false, false, true, false};
+    Geometry g;
+    g.dims = {32, 32, 32};
+    const auto balance = [&](int32_t focus) {
+        LayeredScene scene;
+        pipeline::BalanceTargets targets;
+        targets.focus = focus;
+        return pipeline::balance_visibility(
+            tf, layout, g, [&](const TransferFunctions &f, const arbor_camera &, uint32_t size) { return scene(f, size); },
+            targets);
+    };
+    const auto rank = [](const std::vector<double> &shares, uint32_t b) {
+        return std::count_if(shares.begin(), shares.end(), [&](double s) { return s > shares[b]; });
+    };
+    const auto plain = balance(-1), focused = balance(2);
+    EXPECT_GE(rank(plain.shares_after, 2), 3); // fourth or later
+    // At its densest already, it cannot reach the focus floor on 4 % of the
+    // pixels behind a body that covers all of them; it comes forward.
+    EXPECT_GE(focused.shares_after[2], 5 * plain.shares_after[2]);
+    EXPECT_LE(rank(focused.shares_after, 2), 2); // among the three most visible
+    const pipeline::BalanceTargets targets;
+    EXPECT_LT(focused.scale[1], plain.scale[1]); // the slab in front was thinned
+    EXPECT_GE(focused.shares_after[0], 0.8 * targets.root_floor);
+    for (uint32_t b = 1; b < 5; ++b)
+        EXPECT_GE(focused.shares_after[b], 0.8 * targets.floor) << "structure " << b; // context kept
+}
+
 TEST(VisibilityBalance, ARendererThatMeasuresNothingIsRefused)
 {
     TransferFunctions tf(2, 2, 1.0);
