@@ -264,20 +264,33 @@ struct LayeredScene {
     }
 };
 
-TEST(VisibilityBalance, EveryStructureGetsItsShareAndTheBodyItsBounds)
+// Transfer functions for LayeredScene's five branches (tf of 5 x 2 entries)
+// as a residue flow might leave them: the body dense, the inner solid and
+// the speck faint.
+void assign_layered(TransferFunctions &tf)
 {
-    // Transfer functions as a residue flow might leave them: the body dense,
-    // the inner solid and the speck faint.
     const std::vector<float> densest = {0.5f, 0.3f, 0.02f, 0.4f, 0.01f};
-    TransferFunctions tf(5, 2, 1.0);
     for (uint32_t b = 0; b < 5; ++b) {
         const float rgba[8] = {1, 1, 1, 0, 1, 1, 1, densest[b]};
         tf.assign(b, {0.0, 1.0}, rgba);
     }
+}
+
+// LayeredScene's branch tree: the solid inside the slab, the rest in the body.
+pipeline::BranchLayout layered_layout()
+{
     pipeline::BranchLayout layout;
     layout.parent = {-1, 0, 1, 0, 0};
     layout.voxels = {1e6, 6e4, 4e3, 3e4, 1e3};
     layout.sheet = {false, false, false, true, false};
+    return layout;
+}
+
+TEST(VisibilityBalance, EveryStructureGetsItsShareAndTheBodyItsBounds)
+{
+    TransferFunctions tf(5, 2, 1.0);
+    assign_layered(tf);
+    const pipeline::BranchLayout layout = layered_layout();
     LayeredScene scene;
     Geometry g;
     g.dims = {32, 32, 32};
@@ -315,16 +328,9 @@ TEST(VisibilityBalance, ASelectedStructureIsBroughtForward)
     // selected.  Without the selection it ends at its floor, below the
     // slab, the body and the sheet; selected, it is made as dense as it can
     // be and the slab in front of it is peeled, the body within its bounds.
-    const std::vector<float> densest = {0.5f, 0.3f, 0.02f, 0.4f, 0.01f};
     TransferFunctions tf(5, 2, 1.0);
-    for (uint32_t b = 0; b < 5; ++b) {
-        const float rgba[8] = {1, 1, 1, 0, 1, 1, 1, densest[b]};
-        tf.assign(b, {0.0, 1.0}, rgba);
-    }
-    pipeline::BranchLayout layout;
-    layout.parent = {-1, 0, 1, 0, 0};
-    layout.voxels = {1e6, 6e4, 4e3, 3e4, 1e3};
-    layout.sheet = {false, false, false, true, false};
+    assign_layered(tf);
+    const pipeline::BranchLayout layout = layered_layout();
     Geometry g;
     g.dims = {32, 32, 32};
     const auto balance = [&](int32_t focus) {
