@@ -105,7 +105,7 @@ struct PanelMaps {
     std::size_t cut = 0; // in the grid's cuts
     std::shared_ptr<const Volume> volume; // the first filter's volume
     std::vector<std::shared_ptr<const LabelMap>> labels; // per simplifier
-    std::vector<std::vector<KeptRecord>> kept;                        // per simplifier
+    std::vector<std::vector<KeptRecord>> kept;           // per simplifier
 };
 
 struct StudyOutcome {

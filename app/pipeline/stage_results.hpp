@@ -88,8 +88,8 @@ struct CutResult {
 struct LabelsResult {
     explicit LabelsResult(std::shared_ptr<const CutResult> from) : cut(std::move(from)), labels(*cut->labels) {}
     std::shared_ptr<const CutResult> cut;
-    const LabelMap &labels; // per voxel: the kept label (the cut's)
-    std::vector<std::string> names;      // per label: "root", "max-<branch>", "min-<branch>"
+    const LabelMap &labels;         // per voxel: the kept label (the cut's)
+    std::vector<std::string> names; // per label: "root", "max-<branch>", "min-<branch>"
     uint64_t revision = 0;
     double seconds = 0.0;
 };
