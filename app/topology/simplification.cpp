@@ -56,8 +56,7 @@ SimplificationCut cut_by_count(const BranchDecomposition &d, std::size_t count, 
     return finish(d, keep);
 }
 
-LabelMap label_voxels(const ContourTree &tree, const BranchDecomposition &d,
-                                   const SimplificationCut &cut)
+LabelMap label_voxels(const ContourTree &tree, const BranchDecomposition &d, const SimplificationCut &cut)
 {
     const std::size_t n = tree.vertex_arc.size();
     if (tree.arc_count() == 0)
@@ -65,7 +64,7 @@ LabelMap label_voxels(const ContourTree &tree, const BranchDecomposition &d,
     std::vector<uint32_t> arc_label(tree.arc_count());
     for (std::size_t a = 0; a < arc_label.size(); ++a)
         arc_label[a] = cut.label_of[d.arc_branch[a]];
-    // Sized (the pages are faulted in and zeroed once, on this thread), then
+    // Sized (a LabelMap's pages are faulted in at once, then zeroed), then
     // filled on all cores: the gather is most of the work.
     LabelMap labels(n);
     const uint32_t *arc = tree.vertex_arc.data();

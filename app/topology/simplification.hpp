@@ -38,7 +38,6 @@ SimplificationCut cut_by_count(const BranchDecomposition &d, std::size_t count,
                                const std::vector<bool> &eligible = {});
 
 // Voxel -> index in cut.kept, for every voxel of the tree's volume.
-LabelMap label_voxels(const ContourTree &tree, const BranchDecomposition &d,
-                                   const SimplificationCut &cut);
+LabelMap label_voxels(const ContourTree &tree, const BranchDecomposition &d, const SimplificationCut &cut);
 
 } // namespace arbor::topology
