@@ -16,6 +16,7 @@ constexpr int kIterations = 8;
 constexpr double kStepLimit = 6.0;   // a multiplier changes at most by this factor per iteration
 constexpr double kScaleLimit = 200.0; // nor beyond this, either way, in all
 constexpr double kSeen = 0.02;        // a pixel's opacity above which something is seen there
+constexpr double kContext = 0.5;      // a selection thins its context to no less than this part of its optical depth
 
 struct Measure {
     std::vector<double> visibility; // summed over the views
@@ -93,25 +94,19 @@ std::vector<double> targets_for(const std::vector<double> &s, const std::vector<
     return out;
 }
 
-} // namespace
-
-BalanceResult balance_visibility(const TransferFunctions &tf, const BranchLayout &layout, const Geometry &geometry,
-                                 const PreviewFn &preview, const BalanceTargets &targets, std::stop_token stop)
+// Iterates from the multipliers `start`, none of which goes below its
+// `least`.
+BalanceResult iterate(const TransferFunctions &tf, const BranchLayout &layout, const std::vector<arbor_camera> &views,
+                      const PreviewFn &preview, const BalanceTargets &targets, std::vector<double> start,
+                      const std::vector<double> &least, std::stop_token stop)
 {
     const std::vector<int32_t> &parent = layout.parent;
     const std::vector<double> &voxels = layout.voxels;
-    std::vector<arbor_camera> views;
-    for (const auto &[azimuth, elevation] : {std::pair{0.0, 0.0}, {90.0, 0.0}, {0.0, 80.0}}) {
-        Orbit o;
-        o.azimuth = azimuth;
-        o.elevation = elevation;
-        views.push_back(orbit_camera(geometry, o));
-    }
     const std::size_t n = tf.branch_count();
     BalanceResult r;
-    r.scale.assign(n, 1.0);
-    std::unique_ptr<TransferFunctions> current;
-    Measure m = measure(tf, views, preview);
+    r.scale = std::move(start);
+    std::unique_ptr<TransferFunctions> current = tf.with_optical_depth(r.scale);
+    Measure m = measure(*current, views, preview);
     r.shares_before = shares_of(m.visibility);
     std::vector<double> shares = r.shares_before;
     std::vector<bool> peeled(n, false); // once peeled, never made denser for the picture's sake
@@ -151,12 +146,14 @@ BalanceResult balance_visibility(const TransferFunctions &tf, const BranchLayout
         // The root follows its share alone: made denser with the rest it
         // would take the picture back.
         // A peeled branch is not made denser with the rest, which would undo it.
-        for (std::size_t b = 0; b < n; ++b)
+        for (std::size_t b = 0; b < n; ++b) {
             r.scale[b] = std::clamp(
                 r.scale[b] *
                     std::clamp(step[b] * peel[b] * (b == 0 || peeled[b] || shares[b] > want[b] ? 1.0 : global),
                                1 / kStepLimit, kStepLimit),
                 1 / kScaleLimit, kScaleLimit);
+            r.scale[b] = std::max(r.scale[b], least[b]);
+        }
         if (done)
             break;
         current = tf.with_optical_depth(r.scale);
@@ -165,6 +162,42 @@ BalanceResult balance_visibility(const TransferFunctions &tf, const BranchLayout
         r.iterations = it + 1;
     }
     r.shares_after = shares;
+    return r;
+}
+
+} // namespace
+
+BalanceResult balance_visibility(const TransferFunctions &tf, const BranchLayout &layout, const Geometry &geometry,
+                                 const PreviewFn &preview, const BalanceTargets &targets, std::stop_token stop)
+{
+    std::vector<arbor_camera> views;
+    for (const auto &[azimuth, elevation] : {std::pair{0.0, 0.0}, {90.0, 0.0}, {0.0, 80.0}}) {
+        Orbit o;
+        o.azimuth = azimuth;
+        o.elevation = elevation;
+        views.push_back(orbit_camera(geometry, o));
+    }
+    const std::size_t n = tf.branch_count();
+    const std::vector<double> ones(n, 1.0), none(n, 0.0);
+    if (targets.focus <= 0 || static_cast<std::size_t>(targets.focus) >= n)
+        return iterate(tf, layout, views, preview, targets, ones, none, stop);
+    // A selected structure: first the picture without it, then the
+    // selection from there.  The others but its ancestors (the root, the
+    // body, among them) are its context: thinned to make room, but to no
+    // less than half their optical depth in that picture, so that it does
+    // not go dark around the selection (a jaw in front of a face gains
+    // nothing from a fainter face, however small its share).
+    BalanceTargets plain = targets;
+    plain.focus = -1;
+    const BalanceResult unselected = iterate(tf, layout, views, preview, plain, ones, none, stop);
+    std::vector<double> least(n, 0.0);
+    for (std::size_t b = 0; b < n; ++b)
+        least[b] = kContext * unselected.scale[b];
+    for (int32_t a = targets.focus; a >= 0; a = layout.parent[static_cast<std::size_t>(a)])
+        least[static_cast<std::size_t>(a)] = 0.0;
+    BalanceResult r = iterate(tf, layout, views, preview, targets, unselected.scale, least, stop);
+    r.shares_before = unselected.shares_before;
+    r.iterations += unselected.iterations;
     return r;
 }
 

@@ -357,6 +357,34 @@ TEST(VisibilityBalance, ASelectedStructureIsBroughtForward)
         EXPECT_GE(focused.shares_after[b], 0.8 * targets.floor) << "structure " << b; // context kept
 }
 
+TEST(VisibilityBalance, ASelectionKeepsItsContextReadable)
+{
+    // The same scene and selection.  The sheet and the small structure at
+    // the side are context: they hide nothing of the selected solid, so
+    // thinning them would only darken the picture around it.  They may make
+    // room, but keep at least half the optical depth they have without the
+    // selection, while the slab in front (the solid's parent) is peeled
+    // further than that.
+    TransferFunctions tf(5, 2, 1.0);
+    assign_layered(tf);
+    const pipeline::BranchLayout layout = layered_layout();
+    Geometry g;
+    g.dims = {32, 32, 32};
+    const auto balance = [&](int32_t focus) {
+        LayeredScene scene;
+        pipeline::BalanceTargets targets;
+        targets.focus = focus;
+        return pipeline::balance_visibility(
+            tf, layout, g, [&](const TransferFunctions &f, const arbor_camera &, uint32_t size) { return scene(f, size); },
+            targets);
+    };
+    const auto plain = balance(-1), focused = balance(2);
+    for (const uint32_t b : {3u, 4u})
+        EXPECT_GE(focused.scale[b], 0.5 * plain.scale[b] * (1 - 1e-12)) << "structure " << b;
+    EXPECT_LT(focused.scale[1], 0.5 * plain.scale[1]); // the slab in front
+    EXPECT_EQ(focused.shares_before, plain.shares_before); // both start from the generator's functions
+}
+
 TEST(VisibilityBalance, ARendererThatMeasuresNothingIsRefused)
 {
     TransferFunctions tf(2, 2, 1.0);
