@@ -322,29 +322,31 @@ TEST(VisibilityBalance, EveryStructureGetsItsShareAndTheBodyItsBounds)
     EXPECT_GE(scene.renders, 3); // three views per measurement
 }
 
+// The layered scene balanced with `focus` selected (-1: none).
+pipeline::BalanceResult balance_layered(int32_t focus)
+{
+    TransferFunctions tf(5, 2, 1.0);
+    assign_layered(tf);
+    Geometry g;
+    g.dims = {32, 32, 32};
+    LayeredScene scene;
+    pipeline::BalanceTargets targets;
+    targets.focus = focus;
+    return pipeline::balance_visibility(
+        tf, layered_layout(), g,
+        [&](const TransferFunctions &f, const arbor_camera &, uint32_t size) { return scene(f, size); }, targets);
+}
+
 TEST(VisibilityBalance, ASelectedStructureIsBroughtForward)
 {
     // The same scene; the small solid inside the slab (4 % of the pixels) is
     // selected.  Without the selection it ends at its floor, below the
     // slab, the body and the sheet; selected, it is made as dense as it can
     // be and the slab in front of it is peeled, the body within its bounds.
-    TransferFunctions tf(5, 2, 1.0);
-    assign_layered(tf);
-    const pipeline::BranchLayout layout = layered_layout();
-    Geometry g;
-    g.dims = {32, 32, 32};
-    const auto balance = [&](int32_t focus) {
-        LayeredScene scene;
-        pipeline::BalanceTargets targets;
-        targets.focus = focus;
-        return pipeline::balance_visibility(
-            tf, layout, g, [&](const TransferFunctions &f, const arbor_camera &, uint32_t size) { return scene(f, size); },
-            targets);
-    };
     const auto rank = [](const std::vector<double> &shares, uint32_t b) {
         return std::count_if(shares.begin(), shares.end(), [&](double s) { return s > shares[b]; });
     };
-    const auto plain = balance(-1), focused = balance(2);
+    const auto plain = balance_layered(-1), focused = balance_layered(2);
     EXPECT_GE(rank(plain.shares_after, 2), 3); // fourth or later
     // At its densest already, it cannot reach the focus floor on 4 % of the
     // pixels behind a body that covers all of them; it comes forward.
@@ -365,20 +367,7 @@ TEST(VisibilityBalance, ASelectionKeepsItsContextReadable)
     // room, but keep at least half the optical depth they have without the
     // selection, while the slab in front (the solid's parent) is peeled
     // further than that.
-    TransferFunctions tf(5, 2, 1.0);
-    assign_layered(tf);
-    const pipeline::BranchLayout layout = layered_layout();
-    Geometry g;
-    g.dims = {32, 32, 32};
-    const auto balance = [&](int32_t focus) {
-        LayeredScene scene;
-        pipeline::BalanceTargets targets;
-        targets.focus = focus;
-        return pipeline::balance_visibility(
-            tf, layout, g, [&](const TransferFunctions &f, const arbor_camera &, uint32_t size) { return scene(f, size); },
-            targets);
-    };
-    const auto plain = balance(-1), focused = balance(2);
+    const auto plain = balance_layered(-1), focused = balance_layered(2);
     for (const uint32_t b : {3u, 4u})
         EXPECT_GE(focused.scale[b], 0.5 * plain.scale[b] * (1 - 1e-12)) << "structure " << b;
     EXPECT_LT(focused.scale[1], 0.5 * plain.scale[1]); // the slab in front
