@@ -30,10 +30,10 @@
 // ancestors are peeled as soon as it is short of that floor, and the others
 // (its context) are thinned to make room, but to no less than half their
 // optical depth in that picture: thinning what does not hide it only
-// darkens the picture around it.  (On brain1 the others hide little of the tumour:
-// without them its visibility would be 11 % higher.  Thinned without that
-// bound, the picture went nearly black around a selected jaw on the CT
-// head.)
+// darkens the picture around it.  (On brain1 the others hide little of the
+// tumour: without them its visibility would be 11 % higher.  Thinned
+// without that bound, the picture went nearly black around a selected jaw
+// on the CT head.)
 //
 // The views are fixed (anterior, left, superior), so the result does not
 // change as the camera orbits; the pipeline computes it once per set of
