@@ -2,22 +2,24 @@
 
 #include "branch_decomposition.hpp"
 
+#include "core/parallel_ranges.hpp"
 #include "core/voxel_type.hpp"
 
 #include <stdexcept>
+#include <vector>
 
 namespace arbor::topology {
 
 namespace {
 
-// Interior voxels of every arc (nodes excluded) into count/sum, and the sum
-// over all voxels.
+// Interior voxels of every arc (nodes excluded) added to count/sum, for
+// the voxels [begin, end); returns their value sum.
 template <class T>
-double sum_arcs(const T *values, uint32_t n, const uint32_t *vertex_arc, const HugeVector<uint64_t> &is_node,
-                uint32_t *count, double *sum)
+double sum_arcs(const T *values, uint32_t begin, uint32_t end, const uint32_t *vertex_arc,
+                const HugeVector<uint64_t> &is_node, uint32_t *count, double *sum)
 {
     double total = 0.0;
-    for (uint32_t v = 0; v < n; ++v) {
+    for (uint32_t v = begin; v < end; ++v) {
         const double f = static_cast<double>(values[v]);
         total += f;
         if ((is_node[v >> 6] >> (v & 63)) & 1u)
@@ -29,17 +31,27 @@ double sum_arcs(const T *values, uint32_t n, const uint32_t *vertex_arc, const H
     return total;
 }
 
-} // namespace
-
-TreeRegions::TreeRegions(const ContourTree &tree, const FieldView &field) : tree_(tree), field_(field)
+// Whether sums of the values are exact in doubles whatever their order (8-
+// and 16-bit integers: under 2^53 for up to 2^32 voxels), so that splitting
+// the voxels between cores cannot change a measure.
+bool sums_exactly(arbor_voxel_type type)
 {
-    root_at_minimum();
-    sum_subtrees(field);
+    return type == ARBOR_VOXEL_U8 || type == ARBOR_VOXEL_I8 || type == ARBOR_VOXEL_U16 || type == ARBOR_VOXEL_I16;
 }
 
-double TreeRegions::node_value(uint32_t node) const
+} // namespace
+
+TreeRegions::TreeRegions(const ContourTree &tree, const FieldView &field) : tree_(tree)
 {
-    return field_.value(tree_.node_vertex[node]);
+    node_value_.resize(tree.node_count());
+    dispatch_voxel_type(field.type, [&](auto t) {
+        using T = decltype(t);
+        const T *values = static_cast<const T *>(field.values);
+        for (std::size_t x = 0; x < tree.node_count(); ++x)
+            node_value_[x] = static_cast<double>(values[tree.node_vertex[x]]);
+    });
+    root_at_minimum();
+    sum_subtrees(field);
 }
 
 void TreeRegions::root_at_minimum()
@@ -82,11 +94,34 @@ void TreeRegions::sum_subtrees(const FieldView &field)
         HugeVector<uint64_t> is_node((field.count + 63) / 64, 0);
         for (uint32_t v : tree_.node_vertex)
             is_node[v >> 6] |= uint64_t{1} << (v & 63);
-        total_sum_ = dispatch_voxel_type(field.type, [&](auto t) {
+        // Split between the cores where that leaves the sums exact: each
+        // part but the first counts into arrays of its own, added after.
+        const std::size_t least = sums_exactly(field.type) ? kSplitSumsVoxels : std::max<std::size_t>(field.count, 1);
+        const std::size_t parts = range_parts(field.count, least);
+        std::vector<HugeVector<uint32_t>> counts(parts);
+        std::vector<HugeVector<double>> sums(parts);
+        std::vector<double> totals(parts, 0.0);
+        for (std::size_t p = 1; p < parts; ++p) {
+            counts[p].assign(tree_.arc_count(), 0);
+            sums[p].assign(tree_.arc_count(), 0.0);
+        }
+        dispatch_voxel_type(field.type, [&](auto t) {
             using T = decltype(t);
-            return sum_arcs(static_cast<const T *>(field.values), field.count, tree_.vertex_arc.data(), is_node,
-                            below_count_.data(), below_sum_.data());
+            const T *values = static_cast<const T *>(field.values);
+            for_ranges(field.count, least, [&](std::size_t begin, std::size_t end, std::size_t p) {
+                totals[p] = sum_arcs(values, static_cast<uint32_t>(begin), static_cast<uint32_t>(end),
+                                     tree_.vertex_arc.data(), is_node, p == 0 ? below_count_.data() : counts[p].data(),
+                                     p == 0 ? below_sum_.data() : sums[p].data());
+            });
         });
+        total_sum_ = 0.0;
+        for (std::size_t p = 0; p < parts; ++p)
+            total_sum_ += totals[p];
+        for (std::size_t p = 1; p < parts; ++p)
+            for (std::size_t a = 0; a < tree_.arc_count(); ++a) {
+                below_count_[a] += counts[p][a];
+                below_sum_[a] += sums[p][a];
+            }
     }
     // Children before parents: each node adds itself to its parent arc, which
     // then hands its sums on to the parent's parent arc.

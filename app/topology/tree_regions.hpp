@@ -11,11 +11,16 @@
 #include "contour_tree.hpp"
 #include "../core/huge_pages.hpp"
 
+#include <cstddef>
 #include <cstdint>
 
 namespace arbor::topology {
 
 struct FieldView;
+
+// The least voxels one core sums when the sums are split between cores (8-
+// and 16-bit values, whose sums are exact in any order).
+inline constexpr std::size_t kSplitSumsVoxels = std::size_t{1} << 18;
 
 struct RegionSums {
     double count = 0.0;
@@ -26,7 +31,7 @@ class TreeRegions {
 public:
     TreeRegions(const ContourTree &tree, const FieldView &field);
 
-    double node_value(uint32_t node) const;
+    double node_value(uint32_t node) const { return node_value_[node]; }
     // The tree rooted at the global minimum (node 0): each node's arc towards
     // the root (kNoArc for the root), its depth, and a preorder.
     const HugeVector<uint32_t> &parent_arc() const { return parent_arc_; }
@@ -56,8 +61,10 @@ private:
     void sum_subtrees(const FieldView &field);
 
     const ContourTree &tree_;
-    const FieldView &field_;
     double total_count_ = 0.0, total_sum_ = 0.0;
+    // The value at every node, read once: the decomposition asks for the
+    // values of saddles and extrema tens of millions of times.
+    HugeVector<double> node_value_;
     HugeVector<uint32_t> parent_arc_, depth_, preorder_;
     // Per arc, for its end away from the root: the voxels of that node's
     // subtree plus the arc's interior, and their value sum.
