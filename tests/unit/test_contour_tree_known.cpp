@@ -22,6 +22,7 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -235,6 +236,35 @@ TEST(ContourTreeKnown, StripPersistencePairsFollowTheElderRule)
     } catch (const std::exception &e) {
         ADD_FAILURE() << "compute_topology failed on the 8x1x1 strip [3 1 4 1 5 9 2 6]: " << e.what();
     }
+}
+
+// The pairs file's lines, TTK's columns, for the strip [a, 4.25, 2.125, 6]:
+// join: v0 and v2 start, v1 merges them, v2 dies -> (0, v2, v1); split: v3
+// and v1 start, v2 merges them, v1 dies -> (2, v2, v1); the global pair
+// (v0, v3).  Integer types print whole numbers (%.0f), the others nine
+// significant digits (%.9g, as Python's '%.9g' prints the float 1/3).
+TEST(ContourTreeKnown, PairsFileLinesAreTtksColumns)
+{
+    const auto lines_of = [](arbor_voxel_type type, const std::vector<double> &values) {
+        const Volume volume = test::make_volume(type, {4, 1, 1}, values);
+        const TopologyResult r = topology_of(volume);
+        const FieldView field{volume.type(), volume.data(), static_cast<uint32_t>(volume.voxel_count()),
+                              &volume.geometry()};
+        std::ostringstream out;
+        write_persistence_pairs(out, persistence_pairs(r.tree, r.branches, field), volume.geometry(), volume.type(),
+                                "strip");
+        std::vector<std::string> lines;
+        std::istringstream in(out.str());
+        for (std::string line; std::getline(in, line);)
+            if (!line.empty() && line[0] != '#')
+                lines.push_back(line);
+        return lines;
+    };
+    EXPECT_EQ(lines_of(ARBOR_VOXEL_U8, {0, 4, 2, 6}),
+              (std::vector<std::string>{"0 2 1 2 4 2 2 0 0 1 0 0", "2 2 1 2 4 2 2 0 0 1 0 0", "-1 0 3 0 6 6 0 0 0 3 0 0"}));
+    EXPECT_EQ(lines_of(ARBOR_VOXEL_F32, {static_cast<double>(1.0f / 3.0f), 4.25, 2.125, 6}),
+              (std::vector<std::string>{"0 2 1 2.125 4.25 2.125 2 0 0 1 0 0", "2 2 1 2.125 4.25 2.125 2 0 0 1 0 0",
+                                        "-1 0 3 0.333333343 6 5.66666666 0 0 0 3 0 0"}));
 }
 
 // A strip whose global minimum and maximum are joined by a monotone path:
