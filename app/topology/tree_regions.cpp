@@ -36,7 +36,7 @@ double sum_arcs(const T *values, uint32_t begin, uint32_t end, const uint32_t *v
 // the voxels between cores cannot change a measure.
 bool sums_exactly(arbor_voxel_type type)
 {
-    return type == ARBOR_VOXEL_U8 || type == ARBOR_VOXEL_I8 || type == ARBOR_VOXEL_U16 || type == ARBOR_VOXEL_I16;
+    return is_integer_voxel_type(type) && arbor_voxel_size(type) <= 2;
 }
 
 } // namespace
