@@ -10,7 +10,8 @@
 
 namespace arbor::test {
 
-inline double psnr(const RenderedImage &a, const RenderedImage &b)
+// Mean squared error over RGB, per channel value.
+inline double mean_squared_error(const RenderedImage &a, const RenderedImage &b)
 {
     double se = 0;
     const std::size_t pixels = std::size_t{a.width} * a.height;
@@ -19,8 +20,17 @@ inline double psnr(const RenderedImage &a, const RenderedImage &b)
             const double d = a.rgba[4 * p + c] - b.rgba[4 * p + c];
             se += d * d;
         }
-    const double mse = se / (3.0 * static_cast<double>(pixels));
+    return se / (3.0 * static_cast<double>(pixels));
+}
+
+inline double psnr_of_mse(double mse)
+{
     return mse > 0 ? 10.0 * std::log10(1.0 / mse) : INFINITY;
+}
+
+inline double psnr(const RenderedImage &a, const RenderedImage &b)
+{
+    return psnr_of_mse(mean_squared_error(a, b));
 }
 
 } // namespace arbor::test
