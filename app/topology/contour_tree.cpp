@@ -49,7 +49,9 @@ public:
     // `arcs` bounds the number of arcs (the number of nodes).
     LeafPruning(MergeVertex *state, uint32_t n, std::size_t arcs) : n_(n), s_(state) { arcs_.reserve(arcs); }
 
-    void run(const ProgressFn &progress, const OrderPieces &order)
+    // Prunes the trees to one vertex, and lists the contour tree's nodes
+    // in `nodes`, lowest first.
+    void run(const ProgressFn &progress, const OrderPieces &order, HugeVector<uint32_t> &nodes)
     {
         uint32_t remaining = n_;
         const uint32_t step = std::max<uint32_t>(1, n_ / 64);
@@ -65,10 +67,33 @@ public:
         // in the pass, and the pass order is known ahead, so memory is read
         // in a prefetchable stream instead of by chasing parent links.  Most
         // vertices go in the first passes; the stack finishes the rest.
+        //
+        // The first pass also lists the nodes, highest first, which saves a
+        // walk of the order after the merge: a vertex is a node when its
+        // degrees in the contour tree (the split tree's up, the join tree's
+        // down) are not both 1, and until it is removed, its degree left in
+        // each tree plus the edges it has been handed on that side is that
+        // tree's degree.  Passes remove only the vertex they visit, so no
+        // vertex is removed before the first pass reaches it.
         constexpr int kPasses = 4;
         constexpr uint32_t kAhead = 16;
         static_assert(kAhead <= OrderPieces::kLookahead);
-        for (int pass = 0; pass < kPasses && remaining > 1; ++pass) {
+        order.walk(true, [&](const OrderPiece &piece, uint32_t first) {
+            for (uint32_t i = 0; i < piece.count; ++i) {
+                if (first + i + kAhead < n_)
+                    __builtin_prefetch(&s_[piece[i + kAhead]]);
+                const uint32_t v = piece[i];
+                const MergeVertex &sv = s_[v];
+                if (sv.st_deg + sv.cnt_up != 1 || sv.jt_deg + sv.cnt_down != 1)
+                    nodes.push_back(v);
+                if (remaining > 1 && remove_if_leaf(v, nullptr)) {
+                    --remaining;
+                    report();
+                }
+            }
+        });
+        std::reverse(nodes.begin(), nodes.end());
+        for (int pass = 1; pass < kPasses && remaining > 1; ++pass) {
             const uint32_t before = remaining;
             order.walk(pass % 2 == 0, [&](const OrderPiece &piece, uint32_t first) {
                 for (uint32_t i = 0; i < piece.count && remaining > 1; ++i) {
@@ -252,7 +277,9 @@ ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, Ord
     }
 
     LeafPruning pruning(state, n, node_count);
-    pruning.run(progress, order);
+    ct.node_vertex.reserve(node_count);
+    pruning.run(progress, order, ct.node_vertex);
+    order.release();
     HugeVector<LeafPruning::Arc> arcs = pruning.take_arcs();
 
     // The merge may end on a regular vertex (one edge from each side): the
@@ -268,33 +295,25 @@ ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, Ord
         arcs[dropped].start = arcs[dropped].end = kNoVertex;
     }
 
-    // Nodes: every vertex that is not regular, listed by streaming the
-    // sorted order.  The split-tree links are no longer needed: they now
-    // hold node indices.
-    ct.node_vertex.reserve(node_count);
-    ct.node_up.reserve(node_count);
-    ct.node_down.reserve(node_count);
-    ct.node_kind.reserve(node_count);
-    constexpr uint32_t kAhead = 16;
-    order.walk(false, [&](const OrderPiece &piece, uint32_t first) {
-        for (uint32_t i = 0; i < piece.count; ++i) {
-            if (first + i + kAhead < n)
-                __builtin_prefetch(&state[piece[i + kAhead]]);
-            const uint32_t v = piece[i];
-            MergeVertex &sv = state[v];
-            if (sv.cnt_up == 1 && sv.cnt_down == 1)
-                continue;
-            sv.st_down = static_cast<uint32_t>(ct.node_vertex.size());
-            ct.node_vertex.push_back(v);
-            ct.node_up.push_back(sv.cnt_up);
-            ct.node_down.push_back(sv.cnt_down);
-            ct.node_kind.push_back(kind_of(sv.cnt_up, sv.cnt_down));
-        }
-    });
-    order.release();
+    // Nodes, in the order of their values: every vertex that is not
+    // regular.  The split-tree links are no longer needed: they now hold
+    // node indices.
     if (ct.node_vertex.size() != node_count)
         throw std::logic_error("contour tree merge found " + std::to_string(ct.node_vertex.size()) +
                                " nodes where the merge trees have " + std::to_string(node_count));
+    ct.node_up.resize(node_count);
+    ct.node_down.resize(node_count);
+    ct.node_kind.resize(node_count);
+    constexpr std::size_t kAhead = 16;
+    for (std::size_t i = 0; i < node_count; ++i) {
+        if (i + kAhead < node_count)
+            __builtin_prefetch(&state[ct.node_vertex[i + kAhead]]);
+        MergeVertex &sv = state[ct.node_vertex[i]];
+        sv.st_down = static_cast<uint32_t>(i);
+        ct.node_up[i] = sv.cnt_up;
+        ct.node_down[i] = sv.cnt_down;
+        ct.node_kind[i] = kind_of(sv.cnt_up, sv.cnt_down);
+    }
 
     // Arcs in node terms, compacted (the dropped arc maps to the one it
     // joined).
