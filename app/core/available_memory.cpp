@@ -4,8 +4,10 @@
 #include "volume_header.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 namespace arbor {
@@ -24,14 +26,25 @@ uint64_t file_number(const char *path)
 
 } // namespace
 
+uint64_t memory_override_bytes(const char *text)
+{
+    // strtod alone would take "0x10", "inf" or " 5"; only digits, one point
+    // and an exponent are a byte count here.
+    const std::string s = text;
+    const bool plain = !s.empty() && s.find_first_not_of("0123456789.eE+-") == std::string::npos &&
+                       std::isdigit(static_cast<unsigned char>(s[0]));
+    char *end = nullptr;
+    const double v = plain ? std::strtod(text, &end) : -1.0;
+    if (!plain || end == text || *end != '\0' || !(v >= 0) || v >= 1.8e19)
+        throw std::invalid_argument("ARBOR_MEMORY_AVAILABLE is \"" + s +
+                                    "\": expected the bytes available, such as 3300000000 or 3.3e9");
+    return static_cast<uint64_t>(v);
+}
+
 uint64_t available_memory_bytes()
 {
-    if (const char *env = std::getenv("ARBOR_MEMORY_AVAILABLE")) {
-        char *end = nullptr;
-        const unsigned long long v = std::strtoull(env, &end, 10);
-        if (end && end != env && *end == '\0')
-            return v;
-    }
+    if (const char *env = std::getenv("ARBOR_MEMORY_AVAILABLE"))
+        return memory_override_bytes(env);
     uint64_t available = proc_kilobytes_field("/proc/meminfo", "MemAvailable:");
     // The cgroup this process is in (containers, systemd slices): its limit
     // less what the group already uses.
