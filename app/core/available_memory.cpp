@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -35,7 +36,8 @@ uint64_t memory_override_bytes(const char *text)
                        std::isdigit(static_cast<unsigned char>(s[0]));
     char *end = nullptr;
     const double v = plain ? std::strtod(text, &end) : -1.0;
-    if (!plain || end == text || *end != '\0' || !(v >= 0) || v >= 1.8e19)
+    if (!plain || end == text || *end != '\0' || !(v >= 0) ||
+        v >= static_cast<double>(std::numeric_limits<uint64_t>::max()))
         throw std::invalid_argument("ARBOR_MEMORY_AVAILABLE is \"" + s +
                                     "\": expected the bytes available, such as 3300000000 or 3.3e9");
     return static_cast<uint64_t>(v);

@@ -135,11 +135,13 @@ Orbiting orbit(PluginInstance &renderer, arbor_render_request r, const Geometry 
     Orbiting out;
     out.fps = frames / (ms_since(t0) / 1000.0);
     double mse = 0;
-    for (const auto &[f, image] : kept)
-        mse += test::mean_squared_error(image, frame(f, ARBOR_RENDER_PASS_FULL)) / static_cast<double>(kept.size());
+    RenderedImage full; // the last frame's, kept for the refinement below
+    for (const auto &[f, image] : kept) {
+        full = frame(f, ARBOR_RENDER_PASS_FULL);
+        mse += test::mean_squared_error(image, full) / static_cast<double>(kept.size());
+    }
     out.psnr = test::psnr_of_mse(mse);
     const RenderedImage &last = kept.back().second;
-    const RenderedImage full = frame(frames - 1, ARBOR_RENDER_PASS_FULL);
     if (renders_passes(renderer)) {
         RenderedImage refined = full;
         try {
