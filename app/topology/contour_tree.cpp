@@ -43,15 +43,19 @@ constexpr uint8_t kRemoved = 0xff;
 // tree edge to its split-tree parent, a lower leaf symmetrically.  Removed
 // vertices are skipped lazily by the finds, which compress the parent paths.
 // Arcs are built on the fly: an edge leaving a regular vertex continues the
-// arc that reached it; an edge leaving a node starts a new arc.
+// arc that reached it; an edge leaving a node starts a new arc.  Vertices
+// are ranks here, as in the state (merge_tree.hpp).
 class LeafPruning {
 public:
     // `arcs` bounds the number of arcs (the number of nodes).
-    LeafPruning(MergeVertex *state, uint32_t n, std::size_t arcs) : n_(n), s_(state) { arcs_.reserve(arcs); }
+    LeafPruning(MergeVertex *state, uint32_t *label, uint32_t n, std::size_t arcs) : n_(n), s_(state), label_(label)
+    {
+        arcs_.reserve(arcs);
+    }
 
-    // Prunes the trees to one vertex, and lists the contour tree's nodes
-    // in `nodes`, lowest first.
-    void run(const ProgressFn &progress, const OrderPieces &order, HugeVector<uint32_t> &nodes)
+    // Prunes the trees to one vertex, and lists the ranks of the contour
+    // tree's nodes in `nodes`, lowest first.
+    void run(const ProgressFn &progress, HugeVector<uint32_t> &nodes)
     {
         uint32_t remaining = n_;
         const uint32_t step = std::max<uint32_t>(1, n_ / 64);
@@ -62,56 +66,44 @@ public:
                 next_report += step;
             }
         };
-        // Passes in sorted order first, downwards then upwards: a vertex
+        // Passes over the ranks first, downwards then upwards: a vertex
         // whose edges above (below) were just removed is usually the next one
-        // in the pass, and the pass order is known ahead, so memory is read
-        // in a prefetchable stream instead of by chasing parent links.  Most
-        // vertices go in the first passes; the stack finishes the rest.
+        // in the pass, and the state is indexed by rank, so a pass reads it
+        // as a stream instead of chasing parent links.  Most vertices go in
+        // the first passes; the stack finishes the rest.
         //
-        // The first pass also lists the nodes, highest first, which saves a
-        // walk of the order after the merge: a vertex is a node when its
-        // degrees in the contour tree (the split tree's up, the join tree's
-        // down) are not both 1, and until it is removed, its degree left in
-        // each tree plus the edges it has been handed on that side is that
-        // tree's degree.  Passes remove only the vertex they visit, so no
-        // vertex is removed before the first pass reaches it.
+        // The first pass also lists the nodes, highest first: a vertex is a node when its degrees in
+        // the contour tree (the split tree's up, the join tree's down) are
+        // not both 1, and until it is removed, its degree left in each tree
+        // plus the edges it has been handed on that side is that tree's
+        // degree.  Passes remove only the vertex they visit, so no vertex is
+        // removed before the first pass reaches it.
         constexpr int kPasses = 4;
-        constexpr uint32_t kAhead = 16;
-        static_assert(kAhead <= OrderPieces::kLookahead);
-        order.walk(true, [&](const OrderPiece &piece, uint32_t first) {
-            for (uint32_t i = 0; i < piece.count; ++i) {
-                if (first + i + kAhead < n_)
-                    __builtin_prefetch(&s_[piece[i + kAhead]]);
-                const uint32_t v = piece[i];
-                const MergeVertex &sv = s_[v];
-                if (sv.st_deg + sv.cnt_up != 1 || sv.jt_deg + sv.cnt_down != 1)
-                    nodes.push_back(v);
-                if (remaining > 1 && remove_if_leaf(v, nullptr)) {
-                    --remaining;
-                    report();
-                }
+        for (uint32_t r = n_; r-- > 0;) {
+            const MergeVertex &sr = s_[r];
+            if (sr.st_deg + sr.cnt_up != 1 || sr.jt_deg + sr.cnt_down != 1)
+                nodes.push_back(r);
+            if (remaining > 1 && remove_if_leaf(r, nullptr)) {
+                --remaining;
+                report();
             }
-        });
+        }
         std::reverse(nodes.begin(), nodes.end());
         for (int pass = 1; pass < kPasses && remaining > 1; ++pass) {
             const uint32_t before = remaining;
-            order.walk(pass % 2 == 0, [&](const OrderPiece &piece, uint32_t first) {
-                for (uint32_t i = 0; i < piece.count && remaining > 1; ++i) {
-                    if (first + i + kAhead < n_)
-                        __builtin_prefetch(&s_[piece[i + kAhead]]);
-                    if (remove_if_leaf(piece[i], nullptr)) {
-                        --remaining;
-                        report();
-                    }
+            const bool downwards = pass % 2 == 0;
+            for (uint32_t i = 0; i < n_ && remaining > 1; ++i)
+                if (remove_if_leaf(downwards ? n_ - 1 - i : i, nullptr)) {
+                    --remaining;
+                    report();
                 }
-            });
             if (remaining == before)
                 break;
         }
         std::vector<uint32_t> stack;
-        for (uint32_t v = 0; v < n_; ++v)
-            if (s_[v].jt_deg != kRemoved && is_leaf(s_[v]))
-                stack.push_back(v);
+        for (uint32_t r = 0; r < n_; ++r)
+            if (s_[r].jt_deg != kRemoved && is_leaf(s_[r]))
+                stack.push_back(r);
         // Leaves are taken a batch at a time and the vertices they will
         // attach to are prefetched first, so the cache misses of several
         // independent chains overlap instead of queueing one after another.
@@ -120,13 +112,13 @@ public:
         while (!stack.empty() && remaining > 1) {
             std::size_t count = 0;
             while (count < kBatch && !stack.empty()) {
-                const uint32_t v = stack.back();
+                const uint32_t r = stack.back();
                 stack.pop_back();
-                const MergeVertex &sv = s_[v];
-                if (sv.jt_deg == kRemoved)
+                const MergeVertex &sr = s_[r];
+                if (sr.jt_deg == kRemoved)
                     continue;
-                __builtin_prefetch(&s_[sv.st_deg == 0 ? sv.st_down : sv.jt_up]);
-                batch[count++] = v;
+                __builtin_prefetch(&s_[sr.st_deg == 0 ? sr.st_down : sr.jt_up]);
+                batch[count++] = r;
             }
             for (std::size_t i = 0; i < count && remaining > 1; ++i)
                 if (remove_if_leaf(batch[i], &stack)) {
@@ -137,9 +129,9 @@ public:
         if (remaining != 1)
             throw std::logic_error("contour tree merge stopped with " + std::to_string(remaining) +
                                    " vertices left");
-        for (uint32_t v = 0; v < n_; ++v)
-            if (s_[v].jt_deg != kRemoved) {
-                last_ = v;
+        for (uint32_t r = 0; r < n_; ++r)
+            if (s_[r].jt_deg != kRemoved) {
+                last_ = r;
                 break;
             }
         // The last vertex closes the arcs that reached it.
@@ -148,7 +140,7 @@ public:
     }
 
     struct Arc {
-        uint32_t start, end;
+        uint32_t start, end; // ranks
     };
     HugeVector<Arc> take_arcs() { return std::move(arcs_); }
     uint32_t last() const { return last_; }
@@ -204,7 +196,7 @@ private:
     }
 
     // The first arc that reached v is pending in its label; it ends at v.
-    void close_pending(uint32_t v) { arcs_[s_[v].label].end = v; }
+    void close_pending(uint32_t v) { arcs_[label_[v]].end = v; }
 
     void emit(uint32_t v, uint32_t w, bool downward)
     {
@@ -214,14 +206,14 @@ private:
                                       : (sv.cnt_down == 1 && sv.cnt_up == 0);
         uint32_t arc;
         if (regular) {
-            arc = sv.label; // the arc that reached v goes on through it
+            arc = label_[v]; // the arc that reached v goes on through it
         } else {
             if (sv.cnt_up + sv.cnt_down > 0)
                 close_pending(v);
             arc = static_cast<uint32_t>(arcs_.size());
             arcs_.push_back({v, kNoVertex});
         }
-        sv.label = arc;
+        label_[v] = arc;
         if (downward) {
             ++sv.cnt_down;
             ++sw.cnt_up;
@@ -230,13 +222,14 @@ private:
             ++sw.cnt_down;
         }
         if (sw.cnt_up + sw.cnt_down == 1)
-            sw.label = arc; // pending: continues through w if w is regular
+            label_[w] = arc; // pending: continues through w if w is regular
         else
             arcs_[arc].end = w; // w has two or more arcs: a node
     }
 
     uint32_t n_;
     MergeVertex *s_;
+    uint32_t *label_;
     HugeVector<Arc> arcs_;
     uint32_t last_ = 0;
 };
@@ -256,30 +249,32 @@ NodeKind kind_of(uint8_t up, uint8_t down)
 
 } // namespace
 
-ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, OrderPieces order,
-                               const ProgressFn &progress)
+ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, UninitializedBuffer<uint32_t> labels,
+                               OrderPieces order, const ProgressFn &progress)
 {
     const uint32_t n = static_cast<uint32_t>(merge_state.size());
     ContourTree ct;
     if (n == 0)
         return ct;
-    if (order.size() != n)
-        throw std::invalid_argument("merge_contour_tree: the merge state and the vertex order differ in size");
+    if (order.size() != n || labels.size() != n)
+        throw std::invalid_argument("merge_contour_tree: the merge state, its labels and the vertex order differ in size");
     MergeVertex *state = merge_state.data();
+    uint32_t *label = labels.data();
     // The contour tree's down-degrees are the join tree's, its up-degrees
     // the split tree's: its nodes are known before the merge.
     std::size_t node_count = 0;
-    for (uint32_t v = 0; v < n; ++v) {
-        MergeVertex &s = state[v];
-        s.label = 0;
+    for (uint32_t r = 0; r < n; ++r) {
+        MergeVertex &s = state[r];
+        label[r] = 0;
         s.cnt_up = s.cnt_down = 0;
         node_count += s.jt_deg != 1 || s.st_deg != 1;
     }
 
-    LeafPruning pruning(state, n, node_count);
-    ct.node_vertex.reserve(node_count);
-    pruning.run(progress, order, ct.node_vertex);
-    order.release();
+    // The nodes' ranks, until the augmentation turns them into vertices.
+    HugeVector<uint32_t> &node_rank = ct.node_vertex;
+    node_rank.reserve(node_count);
+    LeafPruning pruning(state, label, n, node_count);
+    pruning.run(progress, node_rank);
     HugeVector<LeafPruning::Arc> arcs = pruning.take_arcs();
 
     // The merge may end on a regular vertex (one edge from each side): the
@@ -296,54 +291,72 @@ ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> merge_state, Ord
     }
 
     // Nodes, in the order of their values: every vertex that is not
-    // regular.  The split-tree links are no longer needed: they now hold
-    // node indices.
+    // regular.
     if (ct.node_vertex.size() != node_count)
         throw std::logic_error("contour tree merge found " + std::to_string(ct.node_vertex.size()) +
                                " nodes where the merge trees have " + std::to_string(node_count));
     ct.node_up.resize(node_count);
     ct.node_down.resize(node_count);
     ct.node_kind.resize(node_count);
-    constexpr std::size_t kAhead = 16;
     for (std::size_t i = 0; i < node_count; ++i) {
-        if (i + kAhead < node_count)
-            __builtin_prefetch(&state[ct.node_vertex[i + kAhead]]);
-        MergeVertex &sv = state[ct.node_vertex[i]];
-        sv.st_down = static_cast<uint32_t>(i);
+        const MergeVertex &sv = state[node_rank[i]];
         ct.node_up[i] = sv.cnt_up;
         ct.node_down[i] = sv.cnt_down;
         ct.node_kind[i] = kind_of(sv.cnt_up, sv.cnt_down);
     }
 
-    // Arcs in node terms, compacted (the dropped arc maps to the one it
-    // joined).
-    HugeVector<uint32_t> compact(arcs.size(), kNoArc);
+    // Arcs are numbered as the merge made them, less the dropped one, which
+    // is the one it joined.
+    const auto compact = [dropped, kept](uint32_t arc) {
+        if (dropped == kNoArc || arc < dropped)
+            return arc;
+        if (arc == dropped)
+            arc = kept;
+        return arc > dropped ? arc - 1 : arc;
+    };
+
+    // Augmentation: the arc of the vertex of rank r goes to its grid index
+    // (from the order), in place of the state, which is no longer read: the
+    // state's first third holds vertex_arc, and the rest of it is returned
+    // to the system.  The peak stays the state's, no page is faulted in for
+    // the segmentation, and the order goes before the tree's arcs are made.
+    // On the way each node's rank becomes its vertex, and its label word,
+    // read, names its index, for the arcs.
+    char *arc_bytes = reinterpret_cast<char *>(state);
+    constexpr uint32_t kAhead = 16;
+    static_assert(kAhead <= OrderPieces::kLookahead);
+    const bool lone = arcs.empty();
+    std::size_t next_node = 0;
+    order.walk(false, [&](const OrderPiece &piece, uint32_t first) {
+        for (uint32_t i = 0; i < piece.count; ++i) {
+            if (first + i + kAhead < n)
+                __builtin_prefetch(arc_bytes + sizeof(uint32_t) * piece[i + kAhead], 1);
+            const uint32_t r = first + i;
+            const uint32_t arc = lone ? kNoArc : compact(label[r]);
+            std::memcpy(arc_bytes + sizeof(uint32_t) * piece[i], &arc, sizeof arc);
+            if (next_node < node_count && node_rank[next_node] == r) {
+                label[r] = static_cast<uint32_t>(next_node);
+                node_rank[next_node++] = piece[i];
+            }
+        }
+    });
+    if (next_node != node_count)
+        throw std::logic_error("contour tree merge: the nodes' ranks are not in order");
+    order.release();
+    ct.vertex_arc = std::move(merge_state).shrink_to<uint32_t>(n);
+
+    // Arcs in node terms.
     ct.arc_lo.reserve(arcs.size());
     ct.arc_hi.reserve(arcs.size());
     for (uint32_t i = 0; i < arcs.size(); ++i) {
         if (arcs[i].start == kNoVertex)
             continue;
-        const uint32_t s = state[arcs[i].start].st_down;
-        const uint32_t e = state[arcs[i].end].st_down;
-        compact[i] = static_cast<uint32_t>(ct.arc_lo.size());
+        const uint32_t s = label[arcs[i].start], e = label[arcs[i].end];
         ct.arc_lo.push_back(std::min(s, e)); // node indices follow the value order
         ct.arc_hi.push_back(std::max(s, e));
     }
-    if (dropped != kNoArc)
-        compact[dropped] = compact[kept];
     arcs = {};
-
-    // Augmentation, in place: the arc of vertex v (4 bytes) overwrites the
-    // state from the front, in state[v / 4], which was read already, and the
-    // rest of the state is returned to the system.  The peak stays the
-    // state's, and no page is faulted in for the segmentation.
-    char *arc_bytes = reinterpret_cast<char *>(state);
-    for (uint32_t v = 0; v < n; ++v) {
-        const uint32_t arc = compact.empty() ? kNoArc : compact[state[v].label];
-        std::memcpy(arc_bytes + sizeof(uint32_t) * v, &arc, sizeof arc);
-    }
-    ct.vertex_arc = std::move(merge_state).shrink_to<uint32_t>(n);
-    compact = {};
+    labels.release();
 
     // Incidence lists.
     const std::size_t count = ct.node_vertex.size();

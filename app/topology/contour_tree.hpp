@@ -58,12 +58,13 @@ struct ContourTree {
 HugeVector<uint32_t> arc_interior_voxels(const ContourTree &tree);
 
 // Merges the two trees the sweeps left in `state` (jt_up, st_down and the
-// degrees of every vertex; see merge_tree.hpp), consuming it and the order:
-// `order`, the vertices lowest first (whole or streamed), lets the merge
-// stream through the vertices instead of chasing links and lists the nodes
-// in order.  Work space beyond them: the tree itself; vertex_arc (4 bytes a
-// vertex) is written in place of the state's first quarter.
-ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> state, OrderPieces order,
-                               const ProgressFn &progress = {});
+// degrees of every vertex by rank; see merge_tree.hpp), consuming it, the
+// label words `labels` (4 bytes a vertex, whatever the sweeps left in them)
+// and the order: `order`, the vertices lowest first (whole or streamed),
+// names the grid vertex of each rank for the node list and the
+// augmentation.  Work space beyond them: the tree itself; vertex_arc (4
+// bytes a vertex) is written in place of the state's first third.
+ContourTree merge_contour_tree(UninitializedBuffer<MergeVertex> state, UninitializedBuffer<uint32_t> labels,
+                               OrderPieces order, const ProgressFn &progress = {});
 
 } // namespace arbor::topology

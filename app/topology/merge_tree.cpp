@@ -9,18 +9,19 @@ namespace arbor::topology {
 
 namespace {
 
-// Union-find over components: link, newest vertex, union-by-rank height.
-// One entry per component (a leaf of the tree), created as the sweep finds it.
+// Union-find over components: link, newest vertex (its rank), union-by-rank
+// height.  One entry per component (a leaf of the tree), created as the sweep
+// finds it.
 struct Components {
     std::vector<uint32_t> link;
     std::vector<uint32_t> newest;
     std::vector<uint8_t> height;
 
-    uint32_t create(uint32_t vertex)
+    uint32_t create(uint32_t rank)
     {
         const uint32_t c = static_cast<uint32_t>(link.size());
         link.push_back(c);
-        newest.push_back(vertex);
+        newest.push_back(rank);
         height.push_back(0);
         return c;
     }
@@ -57,19 +58,8 @@ struct Components {
     }
 };
 
-// Where a sweep keeps the component of each vertex: in the merge state's
-// label (join sweep, or a split sweep on its own) or in an array of its own.
-struct ComponentInState {
-    MergeVertex *state;
-    uint32_t &operator[](std::size_t v) const { return state[v].label; }
-};
-struct ComponentInArray {
-    uint32_t *component;
-    uint32_t &operator[](std::size_t v) const { return component[v]; }
-};
-
-template <bool Join, class ComponentOf>
-void sweep(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *state, ComponentOf component,
+template <bool Join>
+void sweep(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *state, uint32_t *component,
            const ProgressFn &progress)
 {
     const uint32_t n = order.size();
@@ -103,7 +93,6 @@ void sweep(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *sta
     };
     const auto prefetch_bits = [&](int64_t w) {
         __builtin_prefetch(&component[w], 1);
-        __builtin_prefetch(&state[w], 1);
         for (const int64_t p : {w - plane, w, w + plane})
             for (const int64_t r : {p - row, p, p + row})
                 if (r >= 0 && r < static_cast<int64_t>(n))
@@ -132,7 +121,6 @@ void sweep(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *sta
         }
     };
 
-    uint32_t last_vertex = kNoVertex;
     order.walk(!Join, [&](const OrderPiece &piece, uint32_t first) {
         for (uint32_t i = 0; i < piece.count; ++i) {
             const uint32_t step = first + i;
@@ -143,6 +131,7 @@ void sweep(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *sta
             if (step + kNear < n && step + kNear >= kAhead)
                 prefetch_newest(piece[i + kNear], step + kNear);
             const uint32_t v = piece[i];
+            const uint32_t rank = Join ? step : n - 1 - step;
             const uint32_t below = lower_link(v);
             seen[v >> 6] |= uint64_t{1} << (v & 63);
             const LinkComponents &pieces = link[below];
@@ -156,41 +145,29 @@ void sweep(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *sta
                 if (!known)
                     roots[count++] = r;
             }
-            (Join ? state[v].jt_deg : state[v].st_deg) = static_cast<uint8_t>(count);
+            (Join ? state[rank].jt_deg : state[rank].st_deg) = static_cast<uint8_t>(count);
             uint32_t root;
             if (count == 0) {
-                root = components.create(v);
+                root = components.create(rank);
             } else {
                 root = roots[0];
                 for (int i = 0; i < count; ++i) {
                     MergeVertex &joined = state[components.newest[roots[i]]];
-                    (Join ? joined.jt_up : joined.st_down) = v;
+                    (Join ? joined.jt_up : joined.st_down) = rank;
                     if (i > 0)
                         root = components.unite(root, roots[i]);
                 }
-                components.newest[root] = v;
+                components.newest[root] = rank;
             }
             component[v] = root;
             if (progress && (step & (kProgressStep - 1)) == kProgressStep - 1)
                 progress(static_cast<double>(step) / n);
         }
-        if (piece.count > 0)
-            last_vertex = piece[piece.count - 1];
     });
-    if (last_vertex != kNoVertex) { // the last vertex swept: the root of the tree
-        MergeVertex &last = state[last_vertex];
+    if (n > 0) { // the last vertex swept: the root of the tree
+        MergeVertex &last = state[Join ? n - 1 : 0];
         (Join ? last.jt_up : last.st_down) = kNoVertex;
     }
-}
-
-template <bool Join>
-void sweep_into(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *state,
-                uint32_t *component, const ProgressFn &progress)
-{
-    if (component)
-        sweep<Join>(grid, order, state, ComponentInArray{component}, progress);
-    else
-        sweep<Join>(grid, order, state, ComponentInState{state}, progress);
 }
 
 } // namespace
@@ -198,13 +175,13 @@ void sweep_into(const GridNeighbors &grid, const OrderPieces &order, MergeVertex
 void compute_join_tree(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *state,
                        uint32_t *component, const ProgressFn &progress)
 {
-    sweep_into<true>(grid, order, state, component, progress);
+    sweep<true>(grid, order, state, component, progress);
 }
 
 void compute_split_tree(const GridNeighbors &grid, const OrderPieces &order, MergeVertex *state,
                         uint32_t *component, const ProgressFn &progress)
 {
-    sweep_into<false>(grid, order, state, component, progress);
+    sweep<false>(grid, order, state, component, progress);
 }
 
 } // namespace arbor::topology

@@ -91,7 +91,8 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
 
     // Both sweeps fill one merge state.  They are independent: with memory
     // for the split sweep's own component words, it runs on a second thread;
-    // otherwise after the join sweep, reusing the state's label words.
+    // otherwise after the join sweep, reusing the merge's label words, in
+    // which the join sweep keeps its components.
     // Their memory is faulted in before they start, which on a virtual
     // machine alone takes seconds (core/huge_pages.hpp).  With the parallel
     // plan's memory and a counting sort (whose only other memory is the
@@ -99,9 +100,10 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
     // on this one; the "memory" timing is then what is left of it after the
     // sort.
     UninitializedBuffer<MergeVertex> state;
-    UninitializedBuffer<uint32_t> split_components;
+    UninitializedBuffer<uint32_t> labels, split_components;
     const auto fault_in = [&] {
         state = UninitializedBuffer<MergeVertex>(n);
+        labels = UninitializedBuffer<uint32_t>(n);
         if (parallel)
             split_components = UninitializedBuffer<uint32_t>(n);
     };
@@ -140,7 +142,7 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
             }
         });
         try {
-            compute_join_tree(grid, order, state.data(), nullptr, report("join and split trees"));
+            compute_join_tree(grid, order, state.data(), labels.data(), report("join and split trees"));
         } catch (...) {
             split_thread.join();
             throw;
@@ -151,12 +153,12 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
         split_components.release();
     } else {
         const ProgressFn join_progress = report("join tree"), split_progress = report("split tree");
-        compute_join_tree(grid, order, state.data(), nullptr, join_progress);
-        compute_split_tree(grid, order, state.data(), nullptr, split_progress);
+        compute_join_tree(grid, order, state.data(), labels.data(), join_progress);
+        compute_split_tree(grid, order, state.data(), labels.data(), split_progress);
     }
     result.timings.push_back({"join+split trees", watch.lap()});
 
-    result.tree = merge_contour_tree(std::move(state), std::move(order), report("merging trees"));
+    result.tree = merge_contour_tree(std::move(state), std::move(labels), std::move(order), report("merging trees"));
     result.timings.push_back({"merge", watch.lap()});
 
     result.total_seconds = total.lap();

@@ -39,10 +39,11 @@ using StageProgressFn = std::function<void(const char *stage, double fraction)>;
 
 // How compute_contour_tree lays out its work space, fastest first.  Beyond
 // the volume, at its peak:
-// - Parallel: the vertex order (4 bytes a voxel), the merge state (16) and
-//   the split sweep's own component words (4), both sweeps at once: 27;
+// - Parallel: the vertex order (4 bytes a voxel), the merge state (12) and
+//   its label words (4), and the split sweep's own component words (4),
+//   both sweeps at once: 27;
 // - Sequential: the sweeps one after the other, the split sweep reusing the
-//   state's label words: 23;
+//   label words for its components, as the join sweep did: 23;
 // - Streamed (8- and 16-bit volumes): no whole order either; each walk of it
 //   makes the order an eighth at a time by scanning the values, on a second
 //   thread, holding two eighths (1 byte a voxel): 20.

@@ -441,8 +441,8 @@ inline std::vector<int64_t> node_of_vertices(const topology::ContourTree &tree)
 // The contour tree exactly as the pipeline's first three stages build it (sort,
 // join and split sweeps, merge), without the branch decomposition, so that
 // tree-level properties can be checked even where a later stage fails.  The
-// sweeps run one after the other, both keeping their components in the merge
-// state, as the pipeline does when memory is short; compute_topology (with
+// sweeps run one after the other, both keeping their components in the merge's
+// label words, as the pipeline does when memory is short; compute_topology (with
 // no memory budget) runs them at once, so comparing the two compares both
 // ways of sweeping.  With `piece` > 0 (8- and 16-bit volumes) the order is
 // streamed in pieces of that many vertices, as for a whole-body CT.
@@ -455,9 +455,10 @@ inline topology::ContourTree staged_contour_tree(const Volume &volume, uint32_t 
                                   : OrderPieces(sort_vertices(volume.type(), volume.data(), n));
     const GridNeighbors grid(g.dims[0], g.dims[1], g.dims[2]);
     UninitializedBuffer<MergeVertex> state(n);
-    compute_join_tree(grid, order, state.data(), nullptr);
-    compute_split_tree(grid, order, state.data(), nullptr);
-    return merge_contour_tree(std::move(state), std::move(order));
+    UninitializedBuffer<uint32_t> labels(n);
+    compute_join_tree(grid, order, state.data(), labels.data());
+    compute_split_tree(grid, order, state.data(), labels.data());
+    return merge_contour_tree(std::move(state), std::move(labels), std::move(order));
 }
 
 } // namespace arbor::test
