@@ -74,8 +74,9 @@ inline void populate_pages(char *c, std::size_t bytes)
 }
 
 // Which pages a large block gets.  Huge pages serve arrays read at random
-// (the merge state: one TLB entry per 2 MiB).  Arrays that are streamed
-// (volumes, the vertex order, the segmentation) take small pages: on a
+// (the sweeps' component words: one TLB entry per 2 MiB).  Arrays that are
+// streamed (volumes, the vertex order, the merge state in rank order, the
+// segmentation) take small pages: on a
 // virtual machine a huge page comes from memory the host has not backed yet
 // and costs 2-3 s a gigabyte to fault in, small pages come mostly from
 // memory freed a moment ago, 0.5-0.7 s a gigabyte.

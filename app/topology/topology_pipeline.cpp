@@ -99,10 +99,13 @@ TopologyResult compute_contour_tree(const Volume &volume, const StageProgressFn 
     // order), that happens on a second thread while the vertices are sorted
     // on this one; the "memory" timing is then what is left of it after the
     // sort.
+    // The state, indexed by rank, is read and written in order: small pages,
+    // which fault in 3-4 times faster here.  The component words are read
+    // at random by grid index: huge pages (core/huge_pages.hpp).
     UninitializedBuffer<MergeVertex> state;
     UninitializedBuffer<uint32_t> labels, split_components;
     const auto fault_in = [&] {
-        state = UninitializedBuffer<MergeVertex>(n);
+        state = UninitializedBuffer<MergeVertex>(n, Pages::Small);
         labels = UninitializedBuffer<uint32_t>(n);
         if (parallel)
             split_components = UninitializedBuffer<uint32_t>(n);
