@@ -76,16 +76,6 @@ public:
 
     explicit operator bool() const { return window_ != nullptr; }
 
-private:
-    void remember_error()
-    {
-        const char *description = nullptr;
-        const int code = glfwGetError(&description);
-        error_ = "GLFW error " + std::to_string(code) + ": " + (description ? description : "(none)");
-    }
-
-public:
-
     // A frame-sized texture, every texel `fill`.
     GlFrame texture(GLenum format = GL_RGBA32F, float fill = 0.0f, uint32_t w = kW, uint32_t h = kH)
     {
@@ -117,6 +107,13 @@ public:
     }
 
 private:
+    void remember_error()
+    {
+        const char *description = nullptr;
+        const int code = glfwGetError(&description);
+        error_ = "GLFW error " + std::to_string(code) + ": " + (description ? description : "(none)");
+    }
+
     GLFWwindow *window_ = nullptr;
     std::string error_;
     std::vector<GLuint> textures_;
