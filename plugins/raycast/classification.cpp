@@ -68,12 +68,12 @@ float ClassTable::max_alpha(uint32_t label, float lo, float hi) const
 void BoundaryEmphasis::sample(const VoxelGrid &g)
 {
     probes_.clear();
-    if (g.gradient.empty())
+    if (g.surface.empty())
         return;
     const std::size_t n = g.value.size(), stride = std::max<std::size_t>(1, n / (1 << 18));
     probes_.reserve(n / stride + 1);
     for (std::size_t v = 0; v < n; v += stride)
-        probes_.push_back({g.value[v], g.label.empty() ? 0u : g.label[v], g.gradient[v]});
+        probes_.push_back({g.value[v], g.label.empty() ? 0u : g.label[v], g.surface[v].gradient});
 }
 
 void BoundaryEmphasis::build(const ClassTable &table, double strength)
@@ -116,7 +116,7 @@ void AmbientOcclusion::build(const VoxelGrid &g, const ClassTable &table, const 
                 const std::size_t v = g.index(i, j, k);
                 float a = table.lookup(g.label.empty() ? 0u : g.label[v], g.value[v])[3];
                 if (boundaries.active())
-                    a *= boundaries.factor(g.gradient[v]);
+                    a *= boundaries.factor(g.surface[v].gradient);
                 density[static_cast<std::size_t>((i >> 1) + hx_ * ((j >> 1) + hy_ * (k >> 1)))] += a / 8.0f;
             }
     // A box blur of radius 3 cells along each axis in turn, twice: close to

@@ -117,7 +117,7 @@ inline int8_t quantize(float x) { return static_cast<int8_t>(x < 0 ? x - 0.5f : 
 // field's typical change per voxel count as flat (no shading there).  Their
 // magnitudes are kept in 8 bits relative to the 99.5th percentile, taken
 // from about a million voxels first: what boundary-emphasis opacity needs.
-// One pass, and no per-voxel array beyond the two results.
+// One pass, and no per-voxel array beyond the result.
 void compute_normals(VoxelGrid &g, const sdk::Task &task)
 {
     using Range = std::pair<float, float>;
@@ -148,8 +148,7 @@ void compute_normals(VoxelGrid &g, const sdk::Task &task)
     std::nth_element(sample.begin(), at, sample.end());
     const float scale = 255.0f / (*at > 0 ? *at : 1.0f);
 
-    g.normal.resize(3 * voxels);
-    g.gradient.resize(voxels);
+    g.surface.resize(voxels);
     float m[9];
     for (int c = 0; c < 9; ++c)
         m[c] = static_cast<float>(g.to_voxel[c]);
@@ -165,16 +164,13 @@ void compute_normals(VoxelGrid &g, const sdk::Task &task)
                 wz[i] = m[2] * gx[i] + m[5] * gy[i] + m[8] * gz[i];
             }
             const std::size_t v0 = g.index(0, j, k);
-            uint8_t *magnitude = g.gradient.data() + v0;
-            int8_t *n = g.normal.data() + 3 * v0;
+            Surface *surface = g.surface.data() + v0;
             for (int64_t i = 0; i < g.nx; ++i) {
                 const float len = std::sqrt(wx[i] * wx[i] + wy[i] * wy[i] + wz[i] * wz[i]);
-                magnitude[i] = static_cast<uint8_t>(std::min(255.0f, len * scale + 0.5f));
                 // Flat: no direction to shade by.
                 const float unit = len <= flat ? 0.0f : 127.0f / len;
-                n[3 * i] = quantize(wx[i] * unit);
-                n[3 * i + 1] = quantize(wy[i] * unit);
-                n[3 * i + 2] = quantize(wz[i] * unit);
+                surface[i] = {{quantize(wx[i] * unit), quantize(wy[i] * unit), quantize(wz[i] * unit)},
+                              static_cast<uint8_t>(std::min(255.0f, len * scale + 0.5f))};
             }
         }
     });
@@ -228,54 +224,6 @@ void LabelGrid::clear()
     narrow_ = {};
     medium_ = {};
     wide_ = {};
-}
-
-void downsample(const VoxelGrid &g, VoxelGrid &half, const sdk::Task &task)
-{
-    // Per axis: 2 where its spacing is less than half again the finest.
-    std::array<int64_t, 3> f{};
-    std::array<double, 3> spacing{};
-    for (int c = 0; c < 3; ++c)
-        spacing[c] = std::hypot(g.to_world[c], g.to_world[3 + c], g.to_world[6 + c]);
-    const double finest = *std::min_element(spacing.begin(), spacing.end());
-    for (int c = 0; c < 3; ++c)
-        f[c] = spacing[c] < 1.5 * finest ? 2 : 1;
-    half.nx = (g.nx + f[0] - 1) / f[0];
-    half.ny = (g.ny + f[1] - 1) / f[1];
-    half.nz = (g.nz + f[2] - 1) / f[2];
-    const std::size_t n = static_cast<std::size_t>(half.nx * half.ny * half.nz);
-    half.value.assign(n, 0.0f);
-    if (g.label.empty())
-        half.label.clear();
-    else
-        half.label.assign_zero(n, g.max_label);
-    half.max_label = g.max_label;
-    for_slabs(half.nz, task, [&](int64_t k) {
-        for (int64_t j = 0; j < half.ny; ++j)
-            for (int64_t i = 0; i < half.nx; ++i) {
-                float sum = 0;
-                int count = 0;
-                for (int64_t c = f[2] * k; c <= std::min(f[2] * k + f[2] - 1, g.nz - 1); ++c)
-                    for (int64_t b = f[1] * j; b <= std::min(f[1] * j + f[1] - 1, g.ny - 1); ++b)
-                        for (int64_t a = f[0] * i; a <= std::min(f[0] * i + f[0] - 1, g.nx - 1); ++a, ++count)
-                            sum += g.value[g.index(a, b, c)];
-                const std::size_t at = half.index(i, j, k);
-                half.value[at] = sum / static_cast<float>(count);
-                if (!g.label.empty())
-                    half.label.set(at, g.label[g.index(f[0] * i, f[1] * j, f[2] * k)]);
-            }
-    });
-    // Each half voxel sits at the centre of the block it averages.
-    for (int r = 0; r < 3; ++r) {
-        half.origin[r] = g.origin[r];
-        for (int c = 0; c < 3; ++c) {
-            half.to_world[3 * r + c] = static_cast<double>(f[c]) * g.to_world[3 * r + c];
-            half.origin[r] += 0.5 * static_cast<double>(f[c] - 1) * g.to_world[3 * r + c];
-        }
-    }
-    half.to_voxel = inverse(half.to_world);
-    half.min_spacing = std::min({f[0] * spacing[0], f[1] * spacing[1], f[2] * spacing[2]});
-    compute_normals(half, task);
 }
 
 const VoxelGrid &VoxelGridCache::update(const arbor_volume &v, uint64_t volume_revision,

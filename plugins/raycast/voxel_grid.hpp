@@ -1,7 +1,8 @@
 // voxel_grid.hpp - the volume as the ray caster samples it: values as floats
 // (any voxel type, any strides), labels per voxel, unit gradient directions
-// per voxel for shading, and the map between LPS millimetres and voxel
-// indices.  Rebuilt only when the request's revisions or pointers change.
+// and gradient magnitudes per voxel for shading and boundary emphasis, and
+// the map between LPS millimetres and voxel indices.  Rebuilt only when the
+// request's revisions or pointers change.
 #pragma once
 
 #include "unset_vector.hpp"
@@ -31,6 +32,17 @@ class LabelGrid {
 public:
     bool empty() const { return width_ == 0; }
     std::size_t size() const { return size_; }
+    // Bytes per label: 1, 2 or 4 (0: no labels); data<T>() for T of that size.
+    int width() const { return width_; }
+    template <class T> const T *data() const
+    {
+        if constexpr (sizeof(T) == 1)
+            return narrow_.data();
+        else if constexpr (sizeof(T) == 2)
+            return medium_.data();
+        else
+            return wide_.data();
+    }
     uint32_t operator[](std::size_t v) const
     {
         return width_ == 1 ? uint32_t{narrow_[v]} : width_ == 2 ? uint32_t{medium_[v]} : wide_[v];
@@ -59,14 +71,22 @@ private:
     UnsetVector<uint32_t> wide_;
 };
 
+// What a sample reads at its nearest voxel besides the label, in one word
+// (one cache line): the unit world gradient * 127, 0 where the field is flat
+// (shading), and the gradient magnitude, 255 at the field's 99.5th
+// percentile and above (boundary emphasis).
+struct Surface {
+    int8_t normal[3];
+    uint8_t gradient;
+};
+static_assert(sizeof(Surface) == 4);
+
 struct VoxelGrid {
     int64_t nx = 0, ny = 0, nz = 0;
     UnsetVector<float> value; // i fastest
     LabelGrid label;          // empty: every voxel has label 0
     uint32_t max_label = 0;
-    UnsetVector<int8_t> normal;  // [3 * voxels]: unit world gradient * 127; 0 where the field is flat
-    // Gradient magnitude per voxel, 255 at the field's 99.5th percentile (and above).
-    UnsetVector<uint8_t> gradient;
+    UnsetVector<Surface> surface; // per voxel
     Vec3 origin{};               // LPS of voxel (0, 0, 0)
     Mat3 to_world{};             // voxel index offsets -> LPS mm (direction * spacing)
     Mat3 to_voxel{};             // its inverse
@@ -74,13 +94,6 @@ struct VoxelGrid {
 
     std::size_t index(int64_t i, int64_t j, int64_t k) const { return static_cast<std::size_t>(i + nx * (j + ny * k)); }
 };
-
-// The grid at half resolution for the coarse pass: values averaged over
-// blocks of 2 voxels along every axis whose spacing is less than half again
-// the finest (2 x 2 x 2 on an isotropic grid; 2 x 2 x 1 on a CT of 0.5 mm
-// pixels and 1.5 mm slices, whose slices averaged in pairs would blur 3 mm),
-// the label of the first, normals and gradients of its own.
-void downsample(const VoxelGrid &g, VoxelGrid &half, const sdk::Task &task);
 
 class VoxelGridCache {
 public:

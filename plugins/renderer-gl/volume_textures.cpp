@@ -66,10 +66,11 @@ void VolumeTextures::upload_volume(const raycast::VoxelGrid &g)
     // one fetch per sample.
     std::vector<int8_t> packed(4 * g.value.size());
     for (std::size_t v = 0; v < g.value.size(); ++v) {
-        packed[4 * v] = g.normal[3 * v];
-        packed[4 * v + 1] = g.normal[3 * v + 1];
-        packed[4 * v + 2] = g.normal[3 * v + 2];
-        packed[4 * v + 3] = static_cast<int8_t>(static_cast<int>(g.gradient[v]) - 128);
+        const raycast::Surface &s = g.surface[v];
+        packed[4 * v] = s.normal[0];
+        packed[4 * v + 1] = s.normal[1];
+        packed[4 * v + 2] = s.normal[2];
+        packed[4 * v + 3] = static_cast<int8_t>(static_cast<int>(s.gradient) - 128);
     }
     texture_3d(normals_, GL_RGBA8I, GL_RGBA_INTEGER, GL_BYTE, dims_of(g), packed.data());
     check_gl("uploading the normals");

@@ -393,10 +393,10 @@ TEST(CpuRayCaster2, TheCoarsePassIsCloseToTheFullOneAndFaster)
     EXPECT_NEAR(total, full_total, 0.1 * full_total);
 }
 
-TEST(CpuRayCaster2, OnALargeVolumeTheCoarsePassSamplesHalfResolutionAndStaysClose)
+TEST(CpuRayCaster2, OnALargeVolumeTheCoarsePassStaysClose)
 {
-    // 168^3 voxels: above the size from which the coarse pass rays a
-    // half-resolution copy.  A labelled ball in a shell, as above.
+    // 168^3 voxels, larger than the caches: the rays prefetch ahead of
+    // themselves.  A labelled ball in a shell, as above.
     constexpr int64_t n = 168;
     Geometry g;
     g.dims = {n, n, n};
@@ -423,8 +423,8 @@ TEST(CpuRayCaster2, OnALargeVolumeTheCoarsePassSamplesHalfResolutionAndStaysClos
     const RenderedImage full = s.render({}, 256, 256);
     const RenderedImage coarse = s.render({ARBOR_RENDER_PASS_COARSE}, 256, 256);
     const double db = test::psnr(coarse, full);
-    // Lower than at full resolution (hard-edged step functions, a voxel
-    // per 1.5 pixels); a misplaced half grid (by half a voxel) gives 15.
+    // Hard-edged step functions, a voxel per 1.5 pixels; a grid misplaced
+    // by half a voxel gives 15.
     EXPECT_GT(db, 20.0) << "coarse against full: " << db << " dB";
     EXPECT_LT(db, 80.0);
     // The shell and the ball both show, in their own colours: the centre
@@ -432,7 +432,7 @@ TEST(CpuRayCaster2, OnALargeVolumeTheCoarsePassSamplesHalfResolutionAndStaysClos
     const float *centre = pixel(coarse, 128, 128), *full_centre = pixel(full, 128, 128);
     EXPECT_GT(centre[0], centre[2]);
     EXPECT_NEAR(centre[3], full_centre[3], 0.1);
-    // Tiles still join exactly on the half-resolution path.
+    // Tiles join exactly.
     RenderedImage tiled = s.frame(256, 256);
     for (uint32_t y = 0; y < 256; y += 100)
         for (uint32_t x = 0; x < 256; x += 90)
@@ -443,11 +443,9 @@ TEST(CpuRayCaster2, OnALargeVolumeTheCoarsePassSamplesHalfResolutionAndStaysClos
 
 TEST(CpuRayCaster2, OnAnAnisotropicVolumeTheCoarsePassKeepsItsSlices)
 {
-    // A CT's grid, 0.5 mm pixels and 1.5 mm slices, above the size from which
-    // the coarse pass rays a half-resolution copy: a plate one slice thick
-    // every fourth slice.  Averaged in pairs of slices (3 mm) the plates
-    // would fall under the transfer function's step (45 < 50) and vanish
-    // from the coarse pass; halved in-plane only, they stay.
+    // A CT's grid, 0.5 mm pixels and 1.5 mm slices: a plate one slice thick
+    // every fourth slice.  A coarse pass that averaged pairs of slices (3 mm)
+    // would drop the plates under the transfer function's step (45 < 50).
     constexpr int64_t nx = 320, nz = 48;
     Geometry g;
     g.dims = {nx, nx, nz};
