@@ -32,16 +32,12 @@ class LabelGrid {
 public:
     bool empty() const { return width_ == 0; }
     std::size_t size() const { return size_; }
-    // Bytes per label: 1, 2 or 4 (0: no labels); data<T>() for T of that size.
-    int width() const { return width_; }
-    template <class T> const T *data() const
+    // Asks for the cache line of label v (a ray reading ahead of itself).
+    void prefetch(std::size_t v) const
     {
-        if constexpr (sizeof(T) == 1)
-            return narrow_.data();
-        else if constexpr (sizeof(T) == 2)
-            return medium_.data();
-        else
-            return wide_.data();
+        __builtin_prefetch(width_ == 1 ? static_cast<const void *>(narrow_.data() + v)
+                           : width_ == 2 ? static_cast<const void *>(medium_.data() + v)
+                                         : static_cast<const void *>(wide_.data() + v));
     }
     uint32_t operator[](std::size_t v) const
     {

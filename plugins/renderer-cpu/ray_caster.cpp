@@ -7,11 +7,11 @@
 // skipping over 8^3 blocks.  arbor.renderer/2: regions of a frame, a
 // coarse pass for interaction (a ray per n x n pixels, n chosen to reach a
 // frame rate, interpolated, at twice the step), supersampling while idle;
-// tiles of rows on a persistent oneTBB pool, cancellable within a tile.
-// Each ray prefetches the voxels a few samples ahead of it.  What a new set of transfer
-// functions costs is O(blocks) (block statistics are built per volume and
-// labels revision) plus the boundary-emphasis reference (a sample of
-// voxels).
+// tiles of rows on a persistent oneTBB pool, cancellable within a tile.  On
+// large volumes each ray prefetches the voxels a few samples ahead of it.
+// What a new set of transfer functions costs is O(blocks) (block statistics
+// are built per volume and labels revision) plus the boundary-emphasis
+// reference (a sample of voxels).
 #include "cancellation.hpp"
 #include "classification.hpp"
 #include "coarse_lattice.hpp"
@@ -35,7 +35,6 @@
 #include <limits>
 #include <memory>
 #include <thread>
-#include <type_traits>
 
 namespace arbor::raycast {
 
@@ -88,6 +87,9 @@ constexpr uint32_t kRows = 8; // rows per tile of work
 // larger than the caches it waited on memory (the CT head's coarse pass,
 // 512 x 512 x 108: 88 ms a frame without, 67 ms with, on 2 cores).
 constexpr double kAhead = 6;
+// ... on grids of at least this many voxels (values alone 16 MiB): on one
+// the caches hold the prefetches only cost (6 % of a frame of a 64^3 volume).
+constexpr int64_t kPrefetchFrom = int64_t{1} << 22;
 
 // Per worker of the arena: what its rays contributed to each label.
 using Slots = std::vector<std::vector<double>>;
@@ -124,7 +126,6 @@ public:
         pass.step = step_ * (pass.coarse ? kCoarseStep : 1.0);
         pass.table = pass.coarse ? &coarse_table_ : &table_;
         pass.sample_index = request.pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? request.sample_index : 0;
-        pass.march = march_for(*pass.grid, shading.enabled);
 
         const unsigned threads = params().integer("threads") > 0 ? static_cast<unsigned>(params().integer("threads"))
                                                                  : std::max(1u, std::thread::hardware_concurrency());
@@ -175,7 +176,6 @@ private:
         double step = 1.0;
         const float *background = nullptr;
         uint32_t sample_index = 0; // supersampling: which offset within the pixel
-        Sample (RayCaster::*march)(const Pass &, double, double, double, double *) const = nullptr;
     };
 
     // Brings every derived structure up to date with the request: the grid
@@ -299,41 +299,13 @@ private:
     // samples of it contribute (T * alpha) is added.
     Sample cast(const Pass &pass, double px_frame, double py_frame, double offset_fraction, double *visibility) const
     {
-        return (this->*pass.march)(pass, px_frame, py_frame, offset_fraction, visibility);
-    }
-
-    using March = Sample (RayCaster::*)(const Pass &, double, double, double, double *) const;
-
-    // The sample loop for this grid and these settings, chosen once per pass:
-    // label width, shading and boundary emphasis are constants inside it.
-    March march_for(const VoxelGrid &g, bool shaded) const
-    {
-        const bool emphasis = boundaries_.active();
-        const auto pick = [&]<class Label>() -> March {
-            if (shaded)
-                return emphasis ? &RayCaster::march<Label, true, true> : &RayCaster::march<Label, true, false>;
-            return emphasis ? &RayCaster::march<Label, false, true> : &RayCaster::march<Label, false, false>;
-        };
-        switch (g.label.width()) {
-        case 0: return pick.template operator()<void>();
-        case 1: return pick.template operator()<uint8_t>();
-        case 2: return pick.template operator()<uint16_t>();
-        default: return pick.template operator()<uint32_t>();
-        }
-    }
-
-    // Front to back with the transmittance T left in front of each sample
-    // (opacity 1 - T): one multiplication is all a sample waits on from the
-    // one before.  Nothing branches on what a sample loaded (a transparent
-    // entry, a flat normal): a mispredicted branch there would throw away
-    // the loads already under way for the samples after it.  Label: the
-    // label grid's element type (void: no labels).
-    template <class Label, bool Shaded, bool Emphasis>
-    Sample march(const Pass &pass, double px_frame, double py_frame, double offset_fraction, double *visibility) const
-    {
         const VoxelGrid &g = *pass.grid;
+        const Shading &shading = *pass.shading;
+        const ClassTable &table = *pass.table;
         const Occupancy &occupancy = *pass.occupancy;
+        const float termination = pass.termination;
         const double step = pass.step;
+        const float *background = pass.background;
         const Ray ray = pass.camera->ray(px_frame, py_frame);
         // The ray in voxel index space, clipped to the box of voxel centres.
         const Vec3 o = mul(g.to_voxel, {ray.origin[0] - g.origin[0], ray.origin[1] - g.origin[1],
@@ -354,55 +326,29 @@ private:
             t0 = std::max(t0, ta);
             t1 = std::min(t1, tb);
         }
-        // What the loop reads, in locals: the compiler need not reload any
-        // of it after a store.
-        const float *value = g.value.data();
-        const Surface *surface = g.surface.data();
-        const Label *labels = nullptr;
-        if constexpr (!std::is_void_v<Label>)
-            labels = g.label.template data<Label>();
-        const int64_t nx = g.nx, ny = g.ny, nz = g.nz;
-        const int64_t di = nx > 1 ? 1 : 0, dj = ny > 1 ? nx : 0, dk = nz > 1 ? nx * ny : 0;
-        const int64_t last_i = std::max<int64_t>(nx - 2, 0), last_j = std::max<int64_t>(ny - 2, 0),
-                      last_k = std::max<int64_t>(nz - 2, 0);
-        const uint8_t *empty = occupancy.flags().data();
-        const int64_t bx = occupancy.blocks()[0], by = occupancy.blocks()[1];
-        const ClassTable &table = *pass.table;
-        const ClassTable::Range *ranges = &table.range(0);
-        const float *rgba = table.rgba().data();
-        const std::size_t entries = table.entries();
-        const float *factor = boundaries_.factors().data();
-        const Shading &shading = *pass.shading;
-        const float *highlight = shading.highlight.data();
-        const float ambient = shading.ambient, diffuse = shading.diffuse, occlusion = pass.occlusion;
-        // The headlight over 127: a normal's bytes dotted with it give n.l.
-        const float light[3] = {static_cast<float>(-ray.direction[0] / 127.0),
-                                static_cast<float>(-ray.direction[1] / 127.0),
-                                static_cast<float>(-ray.direction[2] / 127.0)};
-        const float stop = 1.0f - pass.termination;
-
-        float acc[3] = {0, 0, 0};
-        float transmittance = 1.0f;
+        float acc[4] = {0, 0, 0, 0};
         float depth = std::numeric_limits<float>::infinity();
+        const float light[3] = {static_cast<float>(-ray.direction[0]), static_cast<float>(-ray.direction[1]),
+                                static_cast<float>(-ray.direction[2])};
         // Start on the global sample lattice, so images do not shimmer as the
         // box is clipped, shifted by a fixed per-pixel fraction of a step.
         const double offset = offset_fraction * step;
         double t = std::ceil((t0 - offset) / step) * step + offset;
-        // What the samples of one label in a row contributed, added to
-        // `visibility` when the label changes (not a read-modify-write of
-        // memory at every sample).
-        uint32_t run_label = 0;
-        float run = 0.0f;
-        while (t <= t1 && transmittance > stop) {
+        const int64_t last_i = std::max<int64_t>(g.nx - 2, 0), last_j = std::max<int64_t>(g.ny - 2, 0),
+                      last_k = std::max<int64_t>(g.nz - 2, 0);
+        const bool labelled = !g.label.empty();
+        const bool prefetch = g.nx * g.ny * g.nz >= kPrefetchFrom;
+        const int64_t dj = g.ny > 1 ? g.nx : 0, dk = g.nz > 1 ? g.nx * g.ny : 0;
+        while (t <= t1 && acc[3] < termination) {
             const double px = o[0] + t * d[0], py = o[1] + t * d[1], pz = o[2] + t * d[2];
             const int64_t i = std::min(static_cast<int64_t>(px), last_i);
             const int64_t j = std::min(static_cast<int64_t>(py), last_j);
             const int64_t k = std::min(static_cast<int64_t>(pz), last_k);
-            if (empty[(i >> 3) + bx * ((j >> 3) + by * (k >> 3))]) { // kBlock = 8
+            if (occupancy.empty(i >> 3, j >> 3, k >> 3)) { // kBlock = 8
                 t = skip_block(o, d, t, step, offset, i, j, k);
                 continue;
             }
-            {
+            if (prefetch) {
                 // The cell kAhead samples on (clamped into the grid): its
                 // values' four rows, and the label and surface words of two
                 // opposite corners (a cell's two rows of them are seldom
@@ -411,79 +357,78 @@ private:
                 const int64_t ai = std::clamp(static_cast<int64_t>(o[0] + ahead * d[0]), int64_t{0}, last_i);
                 const int64_t aj = std::clamp(static_cast<int64_t>(o[1] + ahead * d[1]), int64_t{0}, last_j);
                 const int64_t ak = std::clamp(static_cast<int64_t>(o[2] + ahead * d[2]), int64_t{0}, last_k);
-                const int64_t cell = ai + nx * (aj + ny * ak);
-                __builtin_prefetch(value + cell);
-                __builtin_prefetch(value + cell + dj);
-                __builtin_prefetch(value + cell + dk);
-                __builtin_prefetch(value + cell + dk + dj);
-                __builtin_prefetch(surface + cell);
-                __builtin_prefetch(surface + cell + dk + dj);
-                if constexpr (!std::is_void_v<Label>) {
-                    __builtin_prefetch(labels + cell);
-                    __builtin_prefetch(labels + cell + dk + dj);
+                const std::size_t cell = g.index(ai, aj, ak);
+                const float *value = g.value.data() + cell;
+                __builtin_prefetch(value);
+                __builtin_prefetch(value + dj);
+                __builtin_prefetch(value + dk);
+                __builtin_prefetch(value + dk + dj);
+                __builtin_prefetch(g.surface.data() + cell);
+                __builtin_prefetch(g.surface.data() + cell + dk + dj);
+                if (labelled) {
+                    g.label.prefetch(cell);
+                    g.label.prefetch(cell + dk + dj);
                 }
             }
             const float fx = static_cast<float>(px - i), fy = static_cast<float>(py - j), fz = static_cast<float>(pz - k);
-            const int64_t at = i + nx * (j + ny * k);
-            const float *v = value + at;
-            const float c00 = v[0] + fx * (v[di] - v[0]);
-            const float c10 = v[dj] + fx * (v[dj + di] - v[dj]);
-            const float c01 = v[dk] + fx * (v[dk + di] - v[dk]);
-            const float c11 = v[dk + dj] + fx * (v[dk + dj + di] - v[dk + dj]);
-            const float c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
-            const float sampled = c0 + fz * (c1 - c0);
-            // The nearest voxel carries the label, the normal and the gradient.
-            const int64_t nearest = at + (fx >= 0.5f ? di : 0) + (fy >= 0.5f ? dj : 0) + (fz >= 0.5f ? dk : 0);
-            uint32_t label = 0;
-            if constexpr (!std::is_void_v<Label>)
-                label = labels[nearest];
-            const ClassTable::Range &range = ranges[label];
-            float x = (sampled - range.low) * range.scale;
-            x = x < 0.0f ? 0.0f : (x > range.last ? range.last : x);
-            const float *c = rgba + (label * entries + static_cast<uint32_t>(x + 0.5f)) * 4;
-            // A transparent entry is premultiplied zeros: it adds nothing.
-            float m = 1.0f;
-            Surface s{};
-            if constexpr (Shaded || Emphasis)
-                s = surface[nearest];
-            if constexpr (Emphasis)
-                m = factor[s.gradient];
-            const float alpha = c[3] * m;
-            float r = c[0] * m, gr = c[1] * m, b = c[2] * m;
-            if constexpr (Shaded) {
-                const float ndl = std::fabs(s.normal[0] * light[0] + s.normal[1] * light[1] + s.normal[2] * light[2]);
-                const bool flat = (s.normal[0] | s.normal[1] | s.normal[2]) == 0; // no direction to shade by
-                // Headlight: the half vector is the light direction.
-                const float spec = flat ? 0.0f : highlight[static_cast<std::size_t>(ndl * 256.0f)] * alpha;
-                float lit = flat ? 1.0f : ambient + diffuse * ndl;
-                if (occlusion > 0)
-                    lit *= flat ? 1.0f : 1.0f - occlusion * occlusion_.at(i, j, k);
-                r = r * lit + spec;
-                gr = gr * lit + spec;
-                b = b * lit + spec;
+            const float value = trilinear(g, i, j, k, fx, fy, fz);
+            // The nearest voxel carries the label and the normal.
+            const std::size_t nearest =
+                labelled || shading.enabled || boundaries_.active()
+                    ? g.index(i + (fx >= 0.5f && g.nx > 1), j + (fy >= 0.5f && g.ny > 1), k + (fz >= 0.5f && g.nz > 1))
+                    : 0;
+            const uint32_t label = labelled ? g.label[nearest] : 0u;
+            const float *c = table.lookup(label, value);
+            if (c[3] > 0.0f) {
+                const Surface &surface = g.surface[nearest];
+                const float m = boundaries_.active() ? boundaries_.factor(surface.gradient) : 1.0f;
+                const float alpha = c[3] * m;
+                float r = c[0] * m, gr = c[1] * m, b = c[2] * m;
+                if (shading.enabled) {
+                    const int8_t *nv = surface.normal;
+                    if (nv[0] | nv[1] | nv[2]) {
+                        const float nx = nv[0] / 127.0f, ny = nv[1] / 127.0f, nz = nv[2] / 127.0f;
+                        const float ndl = std::fabs(nx * light[0] + ny * light[1] + nz * light[2]);
+                        // Headlight: the half vector is the light direction.
+                        const float spec = shading.highlight[static_cast<std::size_t>(ndl * 256.0f)] * alpha;
+                        float lit = shading.ambient + shading.diffuse * ndl;
+                        if (pass.occlusion > 0)
+                            lit *= 1.0f - pass.occlusion * occlusion_.at(i, j, k);
+                        r = r * lit + spec;
+                        gr = gr * lit + spec;
+                        b = b * lit + spec;
+                    }
+                }
+                const float w = 1.0f - acc[3];
+                acc[0] += w * r;
+                acc[1] += w * gr;
+                acc[2] += w * b;
+                acc[3] += w * alpha;
+                visibility[label] += w * alpha;
+                if (acc[3] >= 0.5f && depth == std::numeric_limits<float>::infinity())
+                    depth = static_cast<float>(t); // rays start at the camera (plane): t is the distance
             }
-            acc[0] += transmittance * r;
-            acc[1] += transmittance * gr;
-            acc[2] += transmittance * b;
-            if (label != run_label) {
-                visibility[run_label] += run;
-                run = 0.0f;
-                run_label = label;
-            }
-            run += transmittance * alpha;
-            transmittance *= 1.0f - alpha;
-            if (transmittance <= 0.5f && depth == std::numeric_limits<float>::infinity())
-                depth = static_cast<float>(t); // rays start at the camera (plane): t is the distance
             t += step;
         }
-        visibility[run_label] += run;
-        const float *background = pass.background;
         Sample out;
+        const float rest = 1.0f - acc[3];
         for (int ch = 0; ch < 3; ++ch)
-            out.rgba[ch] = std::min(1.0f, acc[ch] + transmittance * background[ch] * background[3]);
-        out.rgba[3] = std::min(1.0f, 1.0f - transmittance + transmittance * background[3]);
+            out.rgba[ch] = std::min(1.0f, acc[ch] + rest * background[ch] * background[3]);
+        out.rgba[3] = std::min(1.0f, acc[3] + rest * background[3]);
         out.depth = depth;
         return out;
+    }
+
+    static float trilinear(const VoxelGrid &g, int64_t i, int64_t j, int64_t k, float fx, float fy, float fz)
+    {
+        const int64_t di = g.nx > 1 ? 1 : 0, dj = g.ny > 1 ? g.nx : 0, dk = g.nz > 1 ? g.nx * g.ny : 0;
+        const float *v = &g.value[g.index(i, j, k)];
+        const float c00 = v[0] + fx * (v[di] - v[0]);
+        const float c10 = v[dj] + fx * (v[dj + di] - v[dj]);
+        const float c01 = v[dk] + fx * (v[dk + di] - v[dk]);
+        const float c11 = v[dk + dj] + fx * (v[dk + dj + di] - v[dk + dj]);
+        const float c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
+        return c0 + fz * (c1 - c0);
     }
 
     // The first position of the ray's own (offset) lattice past the block
