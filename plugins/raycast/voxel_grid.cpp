@@ -183,19 +183,6 @@ int LabelGrid::width_for(uint32_t max_label)
     return max_label < 256 ? 1 : max_label < 65536 ? 2 : 4;
 }
 
-void LabelGrid::assign_zero(std::size_t count, uint32_t max_label)
-{
-    clear();
-    width_ = width_for(max_label);
-    size_ = count;
-    if (width_ == 1)
-        narrow_.assign(count, 0);
-    else if (width_ == 2)
-        medium_.assign(count, 0);
-    else
-        wide_.assign(count, 0);
-}
-
 void LabelGrid::assign(const uint32_t *labels, std::size_t count, uint32_t max_label)
 {
     clear();

@@ -45,8 +45,6 @@ public:
     }
     // Copies labels [0, count) whose largest is `max_label`.
     void assign(const uint32_t *labels, std::size_t count, uint32_t max_label);
-    // count labels of `count`, all 0 (the narrowest kind), to be set().
-    void assign_zero(std::size_t count, uint32_t max_label);
     void set(std::size_t v, uint32_t label)
     {
         if (width_ == 1)
