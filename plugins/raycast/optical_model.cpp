@@ -25,7 +25,7 @@ std::vector<sdk::ParamSpec> optical_model_params()
             sdk::ParamSpec::boolean("jitter", "Jitter", true)
                 .hint("Offset each ray's first sample by a per-pixel fraction of a step: noise instead "
                       "of wood-grain rings"),
-            sdk::ParamSpec::real("coarse-rate", "Coarse frame rate", 22.0, 1.0, 240.0)
+            sdk::ParamSpec::real("coarse-rate", "Coarse frame rate", 24.0, 1.0, 240.0)
                 .unit("frames/s")
                 .group("Interaction")
                 .hint("The coarse pass (while the user drags) chooses how many pixels share a ray, from "
