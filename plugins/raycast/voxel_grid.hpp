@@ -45,6 +45,9 @@ public:
     }
     // Copies labels [0, count) whose largest is `max_label`.
     void assign(const uint32_t *labels, std::size_t count, uint32_t max_label);
+    void clear();
+
+private:
     void set(std::size_t v, uint32_t label)
     {
         if (width_ == 1)
@@ -54,9 +57,6 @@ public:
         else
             wide_[v] = label;
     }
-    void clear();
-
-private:
     static int width_for(uint32_t max_label); // bytes per label
     int width_ = 0; // 0: no labels
     std::size_t size_ = 0;
