@@ -87,6 +87,12 @@ struct VoxelGrid {
     double min_spacing = 1.0;
 
     std::size_t index(int64_t i, int64_t j, int64_t k) const { return static_cast<std::size_t>(i + nx * (j + ny * k)); }
+    // Index offsets from a voxel to the next along i, j and k: a cell's
+    // corners (0 along an axis of one voxel, whose cells are flat).
+    struct Strides {
+        int64_t i, j, k;
+    };
+    Strides strides() const { return {nx > 1 ? 1 : 0, ny > 1 ? nx : 0, nz > 1 ? nx * ny : 0}; }
 };
 
 class VoxelGridCache {

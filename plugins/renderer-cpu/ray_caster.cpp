@@ -87,8 +87,9 @@ constexpr uint32_t kRows = 8; // rows per tile of work
 // larger than the caches it waited on memory (the CT head's coarse pass,
 // 512 x 512 x 108: 88 ms a frame without, 67 ms with, on 2 cores).
 constexpr double kAhead = 6;
-// ... on grids of at least this many voxels (values alone 16 MiB): on one
-// the caches hold the prefetches only cost (6 % of a frame of a 64^3 volume).
+// Rays prefetch on grids of at least this many voxels (values alone 16 MiB):
+// on one the caches hold, prefetches only cost (6 % of a frame of a 64^3
+// volume).
 constexpr int64_t kPrefetchFrom = int64_t{1} << 22;
 
 // Per worker of the arena: what its rays contributed to each label.
@@ -338,7 +339,8 @@ private:
                       last_k = std::max<int64_t>(g.nz - 2, 0);
         const bool labelled = !g.label.empty();
         const bool prefetch = g.nx * g.ny * g.nz >= kPrefetchFrom;
-        const int64_t dj = g.ny > 1 ? g.nx : 0, dk = g.nz > 1 ? g.nx * g.ny : 0;
+        const VoxelGrid::Strides cell_strides = g.strides();
+        const int64_t dj = cell_strides.j, dk = cell_strides.k;
         while (t <= t1 && acc[3] < termination) {
             const double px = o[0] + t * d[0], py = o[1] + t * d[1], pz = o[2] + t * d[2];
             const int64_t i = std::min(static_cast<int64_t>(px), last_i);
@@ -371,7 +373,7 @@ private:
                 }
             }
             const float fx = static_cast<float>(px - i), fy = static_cast<float>(py - j), fz = static_cast<float>(pz - k);
-            const float value = trilinear(g, i, j, k, fx, fy, fz);
+            const float value = trilinear(g, cell_strides, i, j, k, fx, fy, fz);
             // The nearest voxel carries the label and the normal.
             const std::size_t nearest =
                 labelled || shading.enabled || boundaries_.active()
@@ -419,9 +421,10 @@ private:
         return out;
     }
 
-    static float trilinear(const VoxelGrid &g, int64_t i, int64_t j, int64_t k, float fx, float fy, float fz)
+    static float trilinear(const VoxelGrid &g, const VoxelGrid::Strides &s, int64_t i, int64_t j, int64_t k, float fx,
+                           float fy, float fz)
     {
-        const int64_t di = g.nx > 1 ? 1 : 0, dj = g.ny > 1 ? g.nx : 0, dk = g.nz > 1 ? g.nx * g.ny : 0;
+        const int64_t di = s.i, dj = s.j, dk = s.k;
         const float *v = &g.value[g.index(i, j, k)];
         const float c00 = v[0] + fx * (v[di] - v[0]);
         const float c10 = v[dj] + fx * (v[dj + di] - v[dj]);
