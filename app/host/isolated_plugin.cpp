@@ -747,6 +747,7 @@ void put_scene(MessageWriter &w, CallContext &c, const Request &request)
 {
     c.put_cached_volume(w, *request.volume, request.volume_revision);
     c.put_cached_labels(w, request.labels, request.labels_revision);
+    put_label_hierarchy(w, c.bulk(), request.labels);
     put_tf_input(w, c.bulk(), *request.transfer_functions);
     put_camera(w, *request.camera);
     for (float b : request.background)

@@ -221,6 +221,21 @@ void get_rows(MessageReader &r, ChildRows &out)
     rows.value_unit = out.unit.c_str();
 }
 
+void put_label_hierarchy(MessageWriter &w, BulkPlacer &bulk, const arbor_label_map *labels)
+{
+    const bool has = labels && ARBOR_HAS_FIELD(arbor_label_map, labels->struct_size, saddle_value) &&
+                     labels->parent && labels->saddle_value;
+    const uint64_t n = has ? labels->label_count : 0;
+    put_n(w, bulk, has ? labels->parent : nullptr, n);
+    put_n(w, bulk, has ? labels->saddle_value : nullptr, n);
+}
+
+void get_label_hierarchy(MessageReader &r, const WindowView &v, arbor_label_map &labels)
+{
+    labels.parent = get_array<const int32_t>(r, v);
+    labels.saddle_value = get_array<const double>(r, v);
+}
+
 void put_tf_input(MessageWriter &w, BulkPlacer &bulk, const arbor_tf_set &set)
 {
     const uint64_t n = set.branch_count;

@@ -106,6 +106,11 @@ struct ChildRows {
 };
 void get_rows(MessageReader &r, ChildRows &out);
 
+// How a label map's labels nest (parent, saddle value; since ABI 1.6),
+// after the map itself; nothing when the map has none.
+void put_label_hierarchy(MessageWriter &w, BulkPlacer &bulk, const arbor_label_map *labels);
+void get_label_hierarchy(MessageReader &r, const WindowView &v, arbor_label_map &labels);
+
 // A transfer-function set as a renderer's input.
 void put_tf_input(MessageWriter &w, BulkPlacer &bulk, const arbor_tf_set &set);
 struct ChildTfSet {

@@ -1,8 +1,9 @@
 // render_scene.hpp - what a render request points at, built once from the
-// pipeline's results: the volume's record, the label map, the background
-// and the revisions (of the filtered volume and of the labels), so the
-// render stage and the turntable ask a renderer the same way.  The request
-// points into this object: it is neither copied nor moved.
+// pipeline's results: the volume's record, the label map (and how its
+// labels nest), the background and the revisions (of the filtered volume
+// and of the labels), so the render stage and the turntable ask a
+// renderer the same way.  The request points into this object: it is
+// neither copied nor moved.
 #pragma once
 
 #include "stage_results.hpp"
@@ -19,6 +20,13 @@ struct RenderScene {
         for (int a = 0; a < 3; ++a)
             map.dims[a] = filtered.volume->geometry().dims[a];
         map.labels = labels.labels.data();
+        // How the labels nest, for renderers that resolve a label per
+        // sample: the cut's tree, whose branch k is label k.
+        if (labels.cut && labels.cut->tree && labels.cut->tree->size() == label_count) {
+            const arbor_branch_tree &tree = labels.cut->tree->record();
+            map.parent = tree.parent;
+            map.saddle_value = tree.saddle_value;
+        }
         request.struct_size = sizeof request;
         request.volume = &view;
         request.labels = &map;

@@ -96,6 +96,7 @@ struct Scene {
                 labels.dims[a] = r.get<int64_t>();
             labels.labels = view.at<const uint32_t>(r.get<uint64_t>());
         }
+        get_label_hierarchy(r, view, labels);
         get_tf_input(r, view, functions);
         camera = r.get<arbor_camera>();
         for (float &b : background)

@@ -97,12 +97,14 @@ _Static_assert(offsetof(arbor_importer_v1, suffixes) == 0, "offset of arbor_impo
 _Static_assert(offsetof(arbor_importer_v1, probe) == 8, "offset of arbor_importer_v1.probe changed");
 _Static_assert(offsetof(arbor_importer_v1, read_header) == 16, "offset of arbor_importer_v1.read_header changed");
 _Static_assert(offsetof(arbor_importer_v1, read_voxels) == 24, "offset of arbor_importer_v1.read_voxels changed");
-_Static_assert(sizeof(arbor_label_map) == 40, "size of arbor_label_map changed");
+_Static_assert(sizeof(arbor_label_map) == 56, "size of arbor_label_map changed");
 _Static_assert(_Alignof(arbor_label_map) == 8, "alignment of arbor_label_map changed");
 _Static_assert(offsetof(arbor_label_map, struct_size) == 0, "offset of arbor_label_map.struct_size changed");
 _Static_assert(offsetof(arbor_label_map, label_count) == 4, "offset of arbor_label_map.label_count changed");
 _Static_assert(offsetof(arbor_label_map, dims) == 8, "offset of arbor_label_map.dims changed");
 _Static_assert(offsetof(arbor_label_map, labels) == 32, "offset of arbor_label_map.labels changed");
+_Static_assert(offsetof(arbor_label_map, parent) == 40, "offset of arbor_label_map.parent changed");
+_Static_assert(offsetof(arbor_label_map, saddle_value) == 48, "offset of arbor_label_map.saddle_value changed");
 _Static_assert(sizeof(arbor_measure_rows) == 96, "size of arbor_measure_rows changed");
 _Static_assert(_Alignof(arbor_measure_rows) == 8, "alignment of arbor_measure_rows changed");
 _Static_assert(offsetof(arbor_measure_rows, struct_size) == 0, "offset of arbor_measure_rows.struct_size changed");

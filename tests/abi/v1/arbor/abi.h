@@ -70,7 +70,7 @@
  * interface ids; a plugin built against a newer minor than the host must check
  * struct sizes and interface availability before using additions. */
 #define ARBOR_ABI_VERSION_MAJOR 1
-#define ARBOR_ABI_VERSION_MINOR 5
+#define ARBOR_ABI_VERSION_MINOR 6
 #define ARBOR_ABI_VERSION_PATCH 0
 
 typedef struct arbor_version {

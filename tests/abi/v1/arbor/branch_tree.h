@@ -104,6 +104,20 @@ typedef struct arbor_label_map {
     uint32_t label_count; /* = branch_count; every label is < label_count */
     int64_t dims[3];      /* the volume's dims */
     const uint32_t *labels; /* contiguous, i fastest */
+
+    /* Since ABI 1.6 (check ARBOR_HAS_FIELD(arbor_label_map, map->struct_size,
+     * saddle_value)): how the labels nest, so that a renderer can resolve a
+     * label per sample instead of taking its nearest voxel's (topology-
+     * controlled volume rendering, Weber et al. 2007).  parent[l] is the
+     * label of l's parent branch (-1 for the root, label 0; parent[l] < l
+     * otherwise), saddle_value[l] the stored value of l's saddle (the root's:
+     * the volume's minimum).  The region of label l is bounded by the
+     * isosurface at saddle_value[l].  Both [label_count]; they change with
+     * the labels (labels_revision).  NULL when the host does not have the
+     * tree the labels were cut with: then take the nearest voxel's label.
+     * [nullable] */
+    const int32_t *parent;
+    const double *saddle_value;
 } arbor_label_map;
 #define ARBOR_MIN_SIZE_arbor_label_map ARBOR_SIZE_THROUGH(arbor_label_map, labels) /* through ABI 1.0 */
 

@@ -96,6 +96,16 @@ typedef struct arbor_renderer_v1 {
  * compares them to decide what to rebuild and never needs to hash lookup
  * tables.  0 means unknown: treat the contents as changed.
  *
+ * Labels per sample (since ABI 1.6).  The label map may say how its labels
+ * nest (arbor_label_map.parent and .saddle_value).  A renderer that reads
+ * them resolves the label of a sample whose cell has corners of different
+ * labels by the sample's interpolated value: from the label of a corner
+ * below the value and of one above it, walk up the tree, the deeper of the
+ * two at a time, until one's saddle lies between the value and its corner
+ * (that one) or the two meet.  Boundaries between structures are then the
+ * isosurfaces at their saddle values instead of walls of voxels.  A renderer
+ * that ignores them takes each sample's nearest voxel's label, as before.
+ *
  * Visibility (label_visibility in *out): summed over the region's pixels;
  * the host adds up its tiles.  For SUPERSAMPLE, over the new samples.
  *

@@ -123,6 +123,7 @@ private:
                     fail(ARBOR_ERROR_INVALID_ARGUMENT, "label map dims differ from the volume's");
             if (!r.labels->labels || r.labels->label_count > tf.branch_count)
                 fail(ARBOR_ERROR_INVALID_ARGUMENT, "label map has no labels or more labels than transfer functions");
+            check_hierarchy(*r.labels);
         }
         const arbor_camera &c = *r.camera;
         const double d[3] = {c.focal_point[0] - c.position[0], c.focal_point[1] - c.position[1],
@@ -132,6 +133,21 @@ private:
         if (c.projection == ARBOR_PROJECTION_PERSPECTIVE ? !(c.view_angle > 0 && c.view_angle < 180)
                                                           : !(c.parallel_scale > 0))
             fail(ARBOR_ERROR_INVALID_ARGUMENT, "camera view angle or parallel scale out of range");
+    }
+
+    // How the labels nest (since ABI 1.6), when the map says: a tree rooted
+    // at label 0 whose parents come first, with finite saddle values.
+    static void check_hierarchy(const arbor_label_map &m)
+    {
+        if (!ARBOR_HAS_FIELD(arbor_label_map, m.struct_size, saddle_value) || !m.parent || !m.saddle_value)
+            return;
+        for (uint32_t l = 0; l < m.label_count; ++l)
+            if ((l == 0 ? m.parent[l] != -1 : m.parent[l] < 0 || static_cast<uint32_t>(m.parent[l]) >= l) ||
+                !std::isfinite(m.saddle_value[l]))
+                fail(ARBOR_ERROR_INVALID_ARGUMENT,
+                     "label map's hierarchy: label " + std::to_string(l) +
+                         (std::isfinite(m.saddle_value[l]) ? " has a parent that does not come before it"
+                                                           : " has a saddle value that is not finite"));
     }
 
     static arbor_status c_render(arbor_plugin *plugin, const arbor_render_request *request, arbor_image *out,
