@@ -58,6 +58,8 @@ void BlockStatistics::build(const VoxelGrid &g, const sdk::Task &task)
                     }
                 if (g.label.empty())
                     mine[count++] = 0;
+                else if (count <= kMaxLabels)
+                    count = g.tree.close_paths(mine, count, kMaxLabels); // what mixed cells resolve to
                 lo_[b] = lo;
                 hi_[b] = hi;
                 label_count_[b] = count;

@@ -1,7 +1,8 @@
 // block_statistics.hpp - what each 8^3 block of the volume holds, whatever
-// the transfer functions: its value range and the labels present (each
-// with the block's one-voxel apron, everything a trilinear sample inside
-// the block reads).  Built once per volume and labels revision, on all
+// the transfer functions: its value range and the labels its samples can
+// take (each with the block's one-voxel apron, everything a trilinear
+// sample inside the block reads; with the labels' tree, also the labels
+// on the paths between them, which samples in mixed cells resolve to).  Built once per volume and labels revision, on all
 // cores; a new set of transfer functions then finds the empty blocks in
 // O(blocks), not O(voxels).
 #pragma once

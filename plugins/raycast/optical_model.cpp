@@ -7,6 +7,13 @@ std::vector<sdk::ParamSpec> optical_model_params()
     return {sdk::ParamSpec::real("sample-distance", "Sample distance", 0.5, 0.01, 10.0)
                 .unit("voxels")
                 .hint("Distance between samples along a ray, in units of the smallest voxel spacing"),
+            sdk::ParamSpec::boolean("sample-labels", "Labels per sample", true)
+                .hint("A sample in a cell whose voxels belong to different structures takes the structure its "
+                      "interpolated value lies in, so boundaries between structures are smooth isosurfaces "
+                      "at their saddle values (topology-controlled volume rendering); off: its nearest voxel's"),
+            sdk::ParamSpec::boolean("sample-gradients", "Gradients per sample", true)
+                .hint("Shade and emphasise boundaries by the gradient at each sample, trilinear between the "
+                      "voxels' gradients, so surfaces are smooth; off: the nearest voxel's (voxel facets)"),
             sdk::ParamSpec::boolean("shading", "Shading", true)
                 .hint("Blinn-Phong shading from the gradient, lit from the camera"),
             sdk::ParamSpec::real("ambient", "Ambient", 0.3, 0.0, 1.0).group("Shading"),

@@ -1,7 +1,8 @@
 // optical_model.hpp - the settings both ray casters share and what they
-// derive from them: the parameters (sample distance, shading, boundary
-// emphasis, early termination, jitter, the coarse pass) and the shading
-// constants, so the CPU and OpenGL ray casters render one model.
+// derive from them: the parameters (sample distance, labels and gradients
+// per sample, shading, boundary emphasis, early termination, jitter, the
+// coarse pass) and the shading constants, so the CPU and OpenGL ray
+// casters render one model.
 #pragma once
 
 #include <arbor/renderer.h>

@@ -180,28 +180,41 @@ void compute_normals(VoxelGrid &g, const sdk::Task &task)
 
 int LabelGrid::width_for(uint32_t max_label)
 {
-    return max_label < 256 ? 1 : max_label < 65536 ? 2 : 4;
+    return max_label < 128 ? 1 : max_label < 32768 ? 2 : 4;
 }
 
-void LabelGrid::assign(const uint32_t *labels, std::size_t count, uint32_t max_label)
+void LabelGrid::assign(const uint32_t *labels, const std::array<int64_t, 3> &dims, uint32_t max_label)
 {
+    if (max_label >= (1u << 31))
+        sdk::fail(ARBOR_ERROR_INVALID_ARGUMENT, "label " + std::to_string(max_label) + " is too large");
     clear();
     width_ = width_for(max_label);
-    size_ = count;
-    if (width_ == 4) {
-        wide_.assign(labels, labels + count);
-        return;
-    }
-    // Sized unwritten, then every label set once.
+    const int64_t nx = dims[0], ny = dims[1], nz = dims[2];
+    size_ = static_cast<std::size_t>(nx * ny * nz);
+    // Sized unwritten, then every word set once.
     if (width_ == 1)
-        narrow_.resize(count);
+        narrow_.resize(size_);
+    else if (width_ == 2)
+        medium_.resize(size_);
     else
-        medium_.resize(count);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, std::size_t{1} << 18),
-                      [&](const tbb::blocked_range<std::size_t> &r) {
-                          for (std::size_t v = r.begin(); v != r.end(); ++v)
-                              set(v, labels[v]);
-                      });
+        wide_.resize(size_);
+    // The cell at (i, j, k) spans (i..i+1, j..j+1, k..k+1), clamped into
+    // the grid (an axis of one voxel has flat cells).
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, ny * nz), [&](const tbb::blocked_range<int64_t> &rows) {
+        for (int64_t row = rows.begin(); row != rows.end(); ++row) {
+            const int64_t j = row % ny, k = row / ny;
+            const int64_t dj = j + 1 < ny ? nx : 0, dk = k + 1 < nz ? nx * ny : 0;
+            const std::size_t v0 = static_cast<std::size_t>(nx * row);
+            const uint32_t *a = labels + v0, *b = a + dj, *c = a + dk, *d = a + dj + dk;
+            for (int64_t i = 0; i < nx; ++i) {
+                const int64_t di = i + 1 < nx ? 1 : 0;
+                const uint32_t l = a[i];
+                const bool mixed = (a[i + di] ^ l) | (b[i] ^ l) | (b[i + di] ^ l) | (c[i] ^ l) | (c[i + di] ^ l) |
+                                   (d[i] ^ l) | (d[i + di] ^ l);
+                set(v0 + static_cast<std::size_t>(i), l << 1 | (mixed ? 1u : 0u));
+            }
+        }
+    });
 }
 
 void LabelGrid::clear()
@@ -261,9 +274,13 @@ const VoxelGrid &VoxelGridCache::update(const arbor_volume &v, uint64_t volume_r
         if (labels) {
             const uint32_t *first = label_map->labels, *last = first + grid_.value.size();
             grid_.max_label = first == last ? 0 : *std::max_element(first, last);
-            grid_.label.assign(first, grid_.value.size(), grid_.max_label);
+            grid_.label.assign(first, dims, grid_.max_label);
+            grid_.tree.assign(label_map);
+            if (grid_.tree.size() <= grid_.max_label)
+                grid_.tree.clear(); // labels the tree does not know: nearest-voxel labels
         } else {
             grid_.label.clear();
+            grid_.tree.clear();
         }
         labels_ = labels;
         labels_revision_ = labels_revision;

@@ -5,6 +5,7 @@
 // request's revisions or pointers change.
 #pragma once
 
+#include "label_tree.hpp"
 #include "unset_vector.hpp"
 
 #include <arbor/renderer.h>
@@ -27,37 +28,44 @@ inline Vec3 mul(const Mat3 &m, const Vec3 &v)
 
 // Labels per voxel in the fewest bytes that hold the largest: a cut keeps
 // tens of branches, so one byte a voxel instead of four (a 512 x 512 x 2000
-// CT: 0.5 GB instead of 2.1).
+// CT: 0.5 GB instead of 2.1).  Each voxel's word also says whether the
+// cell it is the lowest corner of has corners of other labels (bit 0):
+// a sample in a cell of one label reads one word, only a sample in a mixed
+// cell reads its eight corners' labels.
 class LabelGrid {
 public:
     bool empty() const { return width_ == 0; }
     std::size_t size() const { return size_; }
-    // Asks for the cache line of label v (a ray reading ahead of itself).
+    // Asks for the cache line of voxel v's word (a ray reading ahead of itself).
     void prefetch(std::size_t v) const
     {
         __builtin_prefetch(width_ == 1 ? static_cast<const void *>(narrow_.data() + v)
                            : width_ == 2 ? static_cast<const void *>(medium_.data() + v)
                                          : static_cast<const void *>(wide_.data() + v));
     }
-    uint32_t operator[](std::size_t v) const
+    // label << 1 | (the cell at v is mixed)
+    uint32_t word(std::size_t v) const
     {
         return width_ == 1 ? uint32_t{narrow_[v]} : width_ == 2 ? uint32_t{medium_[v]} : wide_[v];
     }
-    // Copies labels [0, count) whose largest is `max_label`.
-    void assign(const uint32_t *labels, std::size_t count, uint32_t max_label);
+    uint32_t operator[](std::size_t v) const { return word(v) >> 1; }
+    // Copies the labels of a grid of dims[0] x dims[1] x dims[2] voxels
+    // (i fastest), whose largest is `max_label` (below 2^31), and marks the
+    // mixed cells.  On all cores.
+    void assign(const uint32_t *labels, const std::array<int64_t, 3> &dims, uint32_t max_label);
     void clear();
 
 private:
-    void set(std::size_t v, uint32_t label)
+    void set(std::size_t v, uint32_t word)
     {
         if (width_ == 1)
-            narrow_[v] = static_cast<uint8_t>(label);
+            narrow_[v] = static_cast<uint8_t>(word);
         else if (width_ == 2)
-            medium_[v] = static_cast<uint16_t>(label);
+            medium_[v] = static_cast<uint16_t>(word);
         else
-            wide_[v] = label;
+            wide_[v] = word;
     }
-    static int width_for(uint32_t max_label); // bytes per label
+    static int width_for(uint32_t max_label); // bytes per word
     int width_ = 0; // 0: no labels
     std::size_t size_ = 0;
     UnsetVector<uint8_t> narrow_;
@@ -80,6 +88,7 @@ struct VoxelGrid {
     UnsetVector<float> value; // i fastest
     LabelGrid label;          // empty: every voxel has label 0
     uint32_t max_label = 0;
+    LabelTree tree;           // how the labels nest; empty: nearest-voxel labels
     UnsetVector<Surface> surface; // per voxel
     Vec3 origin{};               // LPS of voxel (0, 0, 0)
     Mat3 to_world{};             // voxel index offsets -> LPS mm (direction * spacing)

@@ -1,18 +1,22 @@
 // ray_caster.cpp - org.arbor.renderer.cpu-raycast: emission-absorption ray
 // casting on the CPU.  Front to back; trilinear values; post-classification
-// with the transfer function of the label of the nearest voxel (so equal
-// values in different structures get different colours); opacity corrected
-// for the sample distance; Blinn-Phong shading with a headlight from
-// per-voxel gradient directions; early ray termination; empty-space
-// skipping over 8^3 blocks.  arbor.renderer/2: regions of a frame, a
-// coarse pass for interaction (a ray per n x n pixels, n chosen to reach a
-// frame rate, interpolated, at twice the step), supersampling while idle;
-// tiles of rows on a persistent oneTBB pool, cancellable within a tile.  On
+// with the transfer function of the sample's label, resolved by its value
+// where its cell's voxels differ (so equal values in different structures
+// get different colours, and structures meet along smooth isosurfaces);
+// opacity corrected for the sample distance (and for the part of a step
+// since the ray entered); Blinn-Phong shading with a headlight from the
+// gradient at the sample, trilinear between the voxels'; early ray
+// termination; empty-space skipping over 8^3 blocks.  arbor.renderer/2:
+// regions of a frame, a coarse pass for interaction (a ray per n x n
+// pixels, n chosen to reach a frame rate, interpolated, at twice the step),
+// supersampling while idle; tiles of rows on a persistent oneTBB pool,
+// cancellable within a tile.  On
 // large volumes each ray prefetches the voxels a few samples ahead of it.
 // What a new set of transfer functions costs is O(blocks) (block statistics
 // are built per volume and labels revision) plus the boundary-emphasis
 // reference (a sample of voxels).
 #include "cancellation.hpp"
+#include "cell_sample.hpp"
 #include "classification.hpp"
 #include "coarse_lattice.hpp"
 #include "optical_model.hpp"
@@ -122,6 +126,8 @@ public:
         pass.camera = std::make_unique<Camera>(*request.camera, request.frame_width, request.frame_height);
         pass.termination = static_cast<float>(params().number("termination"));
         pass.jitter = params().flag("jitter");
+        pass.sample_labels = params().flag("sample-labels");
+        pass.sample_gradients = params().flag("sample-gradients");
         pass.background = request.background;
         pass.coarse = coarse;
         pass.step = step_ * (pass.coarse ? kCoarseStep : 1.0);
@@ -174,6 +180,7 @@ private:
         std::unique_ptr<Camera> camera;
         float termination = 0.99f;
         bool jitter = true, coarse = false;
+        bool sample_labels = true, sample_gradients = true; // resolved and interpolated at the sample
         double step = 1.0;
         const float *background = nullptr;
         uint32_t sample_index = 0; // supersampling: which offset within the pixel
@@ -313,20 +320,15 @@ private:
                                         ray.origin[2] - g.origin[2]});
         const Vec3 d = mul(g.to_voxel, ray.direction); // voxels per mm
         // Clipped to the box around the blocks that can be visible at all.
-        const std::array<double, 3> &lo = occupancy.content_low(), &hi = occupancy.content_high();
-        double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
-        for (int a = 0; a < 3; ++a) {
-            if (std::fabs(d[a]) < 1e-12) {
-                if (o[a] < lo[a] || o[a] > hi[a])
-                    t1 = -1;
-                continue;
-            }
-            double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
-            if (ta > tb)
-                std::swap(ta, tb);
-            t0 = std::max(t0, ta);
-            t1 = std::min(t1, tb);
-        }
+        const auto [t0, t1] = chord(o, d, occupancy.content_low(), occupancy.content_high());
+        // Where it enters and leaves through the volume's own faces (the
+        // scan's field of view), the first and last samples stand for the
+        // part of a step up to the face: a cut face does not speckle with
+        // the jitter.
+        const auto [v0, v1] = chord(o, d, {0.0, 0.0, 0.0},
+                                    {static_cast<double>(g.nx - 1), static_cast<double>(g.ny - 1),
+                                     static_cast<double>(g.nz - 1)});
+        const bool enters_face = t0 > 0 && std::fabs(t0 - v0) < 1e-9, leaves_face = std::fabs(t1 - v1) < 1e-9;
         float acc[4] = {0, 0, 0, 0};
         float depth = std::numeric_limits<float>::infinity();
         const float light[3] = {static_cast<float>(-ray.direction[0]), static_cast<float>(-ray.direction[1]),
@@ -335,11 +337,15 @@ private:
         // box is clipped, shifted by a fixed per-pixel fraction of a step.
         const double offset = offset_fraction * step;
         double t = std::ceil((t0 - offset) / step) * step + offset;
+        const double first = t;
         const int64_t last_i = std::max<int64_t>(g.nx - 2, 0), last_j = std::max<int64_t>(g.ny - 2, 0),
                       last_k = std::max<int64_t>(g.nz - 2, 0);
         const bool labelled = !g.label.empty();
+        const bool resolve = labelled && pass.sample_labels && !g.tree.empty();
+        const bool smooth = pass.sample_gradients;
         const bool prefetch = g.nx * g.ny * g.nz >= kPrefetchFrom;
         const VoxelGrid::Strides cell_strides = g.strides();
+        const CellCorners corners(cell_strides);
         const int64_t dj = cell_strides.j, dk = cell_strides.k;
         while (t <= t1 && acc[3] < termination) {
             const double px = o[0] + t * d[0], py = o[1] + t * d[1], pz = o[2] + t * d[2];
@@ -352,54 +358,74 @@ private:
             }
             if (prefetch) {
                 // The cell kAhead samples on (clamped into the grid): its
-                // values' four rows, and the label and surface words of two
-                // opposite corners (a cell's two rows of them are seldom
-                // on one line).
+                // values' and surface words' four rows, and its label word.
                 const double ahead = t + kAhead * step;
                 const int64_t ai = std::clamp(static_cast<int64_t>(o[0] + ahead * d[0]), int64_t{0}, last_i);
                 const int64_t aj = std::clamp(static_cast<int64_t>(o[1] + ahead * d[1]), int64_t{0}, last_j);
                 const int64_t ak = std::clamp(static_cast<int64_t>(o[2] + ahead * d[2]), int64_t{0}, last_k);
                 const std::size_t cell = g.index(ai, aj, ak);
                 const float *value = g.value.data() + cell;
-                __builtin_prefetch(value);
-                __builtin_prefetch(value + dj);
-                __builtin_prefetch(value + dk);
-                __builtin_prefetch(value + dk + dj);
-                __builtin_prefetch(g.surface.data() + cell);
-                __builtin_prefetch(g.surface.data() + cell + dk + dj);
-                if (labelled) {
-                    g.label.prefetch(cell);
-                    g.label.prefetch(cell + dk + dj);
+                const Surface *surface = g.surface.data() + cell;
+                for (const int64_t row : {int64_t{0}, dj, dk, dk + dj}) {
+                    __builtin_prefetch(value + row);
+                    __builtin_prefetch(surface + row);
                 }
+                if (labelled)
+                    g.label.prefetch(cell);
             }
-            const float fx = static_cast<float>(px - i), fy = static_cast<float>(py - j), fz = static_cast<float>(pz - k);
-            const float value = trilinear(g, cell_strides, i, j, k, fx, fy, fz);
-            // The nearest voxel carries the label and the normal.
-            const std::size_t nearest =
-                labelled || shading.enabled || boundaries_.active()
-                    ? g.index(i + (fx >= 0.5f && g.nx > 1), j + (fy >= 0.5f && g.ny > 1), k + (fz >= 0.5f && g.nz > 1))
-                    : 0;
-            const uint32_t label = labelled ? g.label[nearest] : 0u;
+            const std::size_t base = g.index(i, j, k);
+            const Cell cell(g, base, corners, static_cast<float>(px - i), static_cast<float>(py - j),
+                            static_cast<float>(pz - k));
+            const float value = cell.value();
+            // With labels or gradients per sample off: the nearest voxel's.
+            const auto nearest = [&] {
+                return g.index(i + (cell.fx >= 0.5f && g.nx > 1), j + (cell.fy >= 0.5f && g.ny > 1),
+                               k + (cell.fz >= 0.5f && g.nz > 1));
+            };
+            uint32_t label = 0;
+            if (resolve) {
+                const uint32_t word = g.label.word(base);
+                label = word & 1u ? cell.resolved_label(g, base, corners, value) : word >> 1;
+            } else if (labelled) {
+                label = g.label[nearest()];
+            }
             const float *c = table.lookup(label, value);
             if (c[3] > 0.0f) {
-                const Surface &surface = g.surface[nearest];
-                const float m = boundaries_.active() ? boundaries_.factor(surface.gradient) : 1.0f;
+                float n[3], gradient;
+                if (smooth) {
+                    const SampleGradient at(g, base, corners, cell);
+                    n[0] = at.normal[0], n[1] = at.normal[1], n[2] = at.normal[2];
+                    gradient = at.magnitude;
+                } else {
+                    const Surface &surface = g.surface[nearest()];
+                    n[0] = surface.normal[0] / 127.0f, n[1] = surface.normal[1] / 127.0f,
+                    n[2] = surface.normal[2] / 127.0f;
+                    gradient = surface.gradient;
+                }
+                float m = boundaries_.active() ? boundaries_.factor(static_cast<uint8_t>(gradient + 0.5f)) : 1.0f;
+                // A sample stands for the step around it; at a face, for
+                // the part of it inside: opacity 1 - (1 - a)^steps.
+                float steps = 1.0f;
+                if (enters_face && t == first)
+                    steps += static_cast<float>((t - t0) / step) - 0.5f;
+                if (leaves_face && t + step > t1)
+                    steps += static_cast<float>((t1 - t) / step) - 0.5f;
+                if (steps != 1.0f) {
+                    const float a = c[3] * m;
+                    m *= a < 1.0f ? (1.0f - std::pow(1.0f - a, steps)) / a : 1.0f;
+                }
                 const float alpha = c[3] * m;
                 float r = c[0] * m, gr = c[1] * m, b = c[2] * m;
-                if (shading.enabled) {
-                    const int8_t *nv = surface.normal;
-                    if (nv[0] | nv[1] | nv[2]) {
-                        const float nx = nv[0] / 127.0f, ny = nv[1] / 127.0f, nz = nv[2] / 127.0f;
-                        const float ndl = std::fabs(nx * light[0] + ny * light[1] + nz * light[2]);
-                        // Headlight: the half vector is the light direction.
-                        const float spec = shading.highlight[static_cast<std::size_t>(ndl * 256.0f)] * alpha;
-                        float lit = shading.ambient + shading.diffuse * ndl;
-                        if (pass.occlusion > 0)
-                            lit *= 1.0f - pass.occlusion * occlusion_.at(i, j, k);
-                        r = r * lit + spec;
-                        gr = gr * lit + spec;
-                        b = b * lit + spec;
-                    }
+                if (shading.enabled && (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f)) {
+                    const float ndl = std::min(1.0f, std::fabs(n[0] * light[0] + n[1] * light[1] + n[2] * light[2]));
+                    // Headlight: the half vector is the light direction.
+                    const float spec = shading.highlight[static_cast<std::size_t>(ndl * 256.0f)] * alpha;
+                    float lit = shading.ambient + shading.diffuse * ndl;
+                    if (pass.occlusion > 0)
+                        lit *= 1.0f - pass.occlusion * occlusion_.at(i, j, k);
+                    r = r * lit + spec;
+                    gr = gr * lit + spec;
+                    b = b * lit + spec;
                 }
                 const float w = 1.0f - acc[3];
                 acc[0] += w * r;
@@ -421,17 +447,25 @@ private:
         return out;
     }
 
-    static float trilinear(const VoxelGrid &g, const VoxelGrid::Strides &s, int64_t i, int64_t j, int64_t k, float fx,
-                           float fy, float fz)
+    // Where the ray o + t d (t >= 0) is inside the box [lo, hi]: t0 > t1
+    // when it misses.
+    static std::pair<double, double> chord(const Vec3 &o, const Vec3 &d, const std::array<double, 3> &lo,
+                                           const std::array<double, 3> &hi)
     {
-        const int64_t di = s.i, dj = s.j, dk = s.k;
-        const float *v = &g.value[g.index(i, j, k)];
-        const float c00 = v[0] + fx * (v[di] - v[0]);
-        const float c10 = v[dj] + fx * (v[dj + di] - v[dj]);
-        const float c01 = v[dk] + fx * (v[dk + di] - v[dk]);
-        const float c11 = v[dk + dj] + fx * (v[dk + dj + di] - v[dk + dj]);
-        const float c0 = c00 + fy * (c10 - c00), c1 = c01 + fy * (c11 - c01);
-        return c0 + fz * (c1 - c0);
+        double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
+        for (int a = 0; a < 3; ++a) {
+            if (std::fabs(d[a]) < 1e-12) {
+                if (o[a] < lo[a] || o[a] > hi[a])
+                    t1 = -1;
+                continue;
+            }
+            double ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+            if (ta > tb)
+                std::swap(ta, tb);
+            t0 = std::max(t0, ta);
+            t1 = std::min(t1, tb);
+        }
+        return {t0, t1};
     }
 
     // The first position of the ray's own (offset) lattice past the block

@@ -292,6 +292,10 @@ private:
         unsigned variant = 0;
         if (s.textures.labelled())
             variant |= kLabelled;
+        if (s.textures.resolvable() && params().flag("sample-labels"))
+            variant |= kResolve;
+        if (params().flag("sample-gradients"))
+            variant |= kSmooth;
         if (shading.enabled)
             variant |= kShaded;
         if (boundaries_.active())
@@ -418,6 +422,7 @@ private:
         glUniform1i(at("u_ranges"), unit::ranges);
         glUniform1i(at("u_factors"), unit::factors);
         glUniform1i(at("u_occlusion"), unit::occlusion);
+        glUniform1i(at("u_tree"), unit::tree);
         glUniform1f(at("u_occlusion_strength"), occlusion_strength_);
         glUniform3i(at("u_dims"), static_cast<GLint>(g.nx), static_cast<GLint>(g.ny), static_cast<GLint>(g.nz));
         vec3("u_origin", g.origin);

@@ -91,7 +91,8 @@ GLuint RaycastPrograms::get(unsigned variant)
     std::string header = "#version 330 core\n";
     const std::pair<unsigned, const char *> defines[] = {
         {kLabelled, "LABELLED"}, {kShaded, "SHADED"}, {kBoundary, "BOUNDARY"},
-        {kJitter, "JITTER"},     {kVisibility, "VISIBILITY"}, {kOcclusion, "OCCLUSION"}};
+        {kJitter, "JITTER"},     {kVisibility, "VISIBILITY"}, {kOcclusion, "OCCLUSION"},
+        {kResolve, "RESOLVE"},   {kSmooth, "SMOOTH"}};
     for (const auto &[bit, name] : defines)
         if (variant & bit)
             header += std::string("#define ") + name + "\n";

@@ -1,6 +1,7 @@
 // raycast_programs.hpp - the ray casting shader (resources/shaders,
 // embedded at build time) compiled once per variant: which of LABELLED,
-// SHADED, BOUNDARY, JITTER, VISIBILITY and OCCLUSION it is built with;
+// RESOLVE, SMOOTH, SHADED, BOUNDARY, JITTER, VISIBILITY and OCCLUSION it is
+// built with;
 // and the present program (arbor.renderer-gl/1).
 #pragma once
 
@@ -18,6 +19,8 @@ enum Variant : unsigned {
     kJitter = 1u << 3,
     kVisibility = 1u << 4,
     kOcclusion = 1u << 5,
+    kResolve = 1u << 6, // labels per sample
+    kSmooth = 1u << 7,  // gradients per sample
 };
 
 class RaycastPrograms {

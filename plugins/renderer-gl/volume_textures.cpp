@@ -79,22 +79,37 @@ void VolumeTextures::upload_volume(const raycast::VoxelGrid &g)
 void VolumeTextures::upload_labels(const raycast::VoxelGrid &g)
 {
     labelled_ = !g.label.empty();
+    resolvable_ = labelled_ && !g.tree.empty();
     if (!labelled_) {
         labels_.reset();
+        tree_.reset();
         return;
     }
-    if (g.max_label < 65536) {
+    // Each voxel's word: its label and whether its cell is mixed.
+    if (g.max_label < 32768) {
         std::vector<uint16_t> small(g.label.size());
         for (std::size_t v = 0; v < small.size(); ++v)
-            small[v] = static_cast<uint16_t>(g.label[v]);
+            small[v] = static_cast<uint16_t>(g.label.word(v));
         texture_3d(labels_, GL_R16UI, GL_RED_INTEGER, GL_UNSIGNED_SHORT, dims_of(g), small.data());
     } else {
         std::vector<uint32_t> wide(g.label.size());
         for (std::size_t v = 0; v < wide.size(); ++v)
-            wide[v] = g.label[v];
+            wide[v] = g.label.word(v);
         texture_3d(labels_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, dims_of(g), wide.data());
     }
     check_gl("uploading the label map");
+    if (!resolvable_) {
+        tree_.reset();
+        return;
+    }
+    std::vector<float> tree(4 * static_cast<std::size_t>(g.tree.size()), 0.0f);
+    for (uint32_t l = 0; l < g.tree.size(); ++l) {
+        tree[4 * l] = static_cast<float>(g.tree.parent(l));
+        tree[4 * l + 1] = static_cast<float>(g.tree.depth(l));
+        tree[4 * l + 2] = g.tree.saddle(l);
+    }
+    texture_2d(tree_, GL_RGBA32F, static_cast<GLsizei>(g.tree.size()), 1, GL_RGBA, tree.data());
+    check_gl("uploading the labels' tree");
 }
 
 void VolumeTextures::upload_blocks(const raycast::Occupancy &occupancy)
@@ -149,6 +164,7 @@ void VolumeTextures::bind(bool coarse) const
     at(unit::ranges, GL_TEXTURE_2D, ranges_);
     at(unit::factors, GL_TEXTURE_2D, factors_);
     at(unit::occlusion, GL_TEXTURE_3D, occlusion_);
+    at(unit::tree, GL_TEXTURE_2D, tree_);
     glActiveTexture(GL_TEXTURE0);
 }
 

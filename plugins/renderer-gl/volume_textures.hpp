@@ -1,5 +1,6 @@
 // volume_textures.hpp - what the ray casting shader samples, as textures:
-// the voxel values (trilinear), labels, normals with gradient magnitudes,
+// the voxel values (trilinear), labels (with their mixed-cell bits) and
+// the labels' tree, normals with gradient magnitudes,
 // the empty-block flags, and the classification tables (per label a row of
 // premultiplied, opacity-corrected RGBA; the value ranges; the boundary
 // factors and specular highlights).  All built by the shared ray casting
@@ -16,7 +17,7 @@ namespace arbor::glraycast {
 
 // Texture units the shader's samplers read.
 namespace unit {
-enum Unit : GLint { values = 0, labels, normals, blocks, lut, ranges, factors, occlusion };
+enum Unit : GLint { values = 0, labels, normals, blocks, lut, ranges, factors, occlusion, tree };
 } // namespace unit
 
 class VolumeTextures {
@@ -35,10 +36,12 @@ public:
     // when `coarse`.
     void bind(bool coarse) const;
     bool labelled() const { return labelled_; }
+    // Labelled, with the labels' tree: samples can resolve their labels.
+    bool resolvable() const { return resolvable_; }
 
 private:
-    Texture values_, labels_, normals_, blocks_, lut_, coarse_lut_, ranges_, factors_, occlusion_;
-    bool labelled_ = false;
+    Texture values_, labels_, normals_, blocks_, lut_, coarse_lut_, ranges_, factors_, occlusion_, tree_;
+    bool labelled_ = false, resolvable_ = false;
 };
 
 } // namespace arbor::glraycast

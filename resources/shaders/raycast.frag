@@ -1,26 +1,33 @@
 // raycast.frag - emission-absorption ray casting, the optical model of the
 // CPU ray caster (plugins/renderer-cpu/ray_caster.cpp), sample for sample:
 // front to back on the global lattice t = n * step + offset (offset a fixed
-// per-pixel fraction of a step when jittered), trilinear values,
-// post-classification with the lookup table of the nearest voxel's label
+// per-pixel fraction of a step when jittered; where the ray enters or
+// leaves through the volume's faces, the first and last samples' opacity
+// corrected for the part of their step inside), trilinear
+// values, post-classification with the lookup table of the sample's label
 // (premultiplied, opacity corrected for the step), boundary emphasis from
 // the gradient magnitude, Blinn-Phong with a headlight and two-sided
 // normals, early ray termination, empty 8^3 blocks skipped.
 //
 // Variants are chosen when the program is built (llvmpipe runs both sides
-// of a uniform branch): LABELLED, SHADED, BOUNDARY, JITTER, OCCLUSION (ambient
-// occlusion darkens the lit colour), and VISIBILITY
-// (instead of colour: what each of 32 labels from u_visibility_base
-// contributes, T * alpha, into 8 RGBA targets).
+// of a uniform branch): LABELLED, RESOLVE (a sample in a cell of mixed
+// labels takes the label its value implies, walking the labels' tree as
+// plugins/raycast/label_tree.hpp does; else the nearest voxel's), SMOOTH
+// (the gradient at the sample, trilinear between the voxels', as
+// plugins/raycast/cell_sample.hpp; else the nearest voxel's), SHADED,
+// BOUNDARY, JITTER, OCCLUSION (ambient occlusion darkens the lit colour),
+// and VISIBILITY (instead of colour: what each of 32 labels from
+// u_visibility_base contributes, T * alpha, into 8 RGBA targets).
 
 uniform sampler3D u_values;   // R32F, linear: voxel centre (i, j, k) at ((i, j, k) + 0.5) / dims
-uniform usampler3D u_labels;  // R16UI or R32UI
+uniform usampler3D u_labels;  // R16UI or R32UI: label << 1 | (the cell at this voxel has corners of other labels)
 uniform isampler3D u_normals; // RGBA8I: xyz unit gradient * 127 (0: flat), w gradient magnitude - 128
 uniform usampler3D u_blocks;  // R8UI per 8^3 block: 1 when every sample in it is transparent
 uniform sampler2D u_lut;      // RGBA32F, a row per label
 uniform sampler2D u_ranges;   // RGBA32F, one row: per label (low, scale, last)
 uniform sampler2D u_factors;  // R32F: row 0 boundary factor per gradient byte, row 1 highlight per ndl * 256
 uniform sampler3D u_occlusion; // R8 at half resolution: how filled with opacity the space around is
+uniform sampler2D u_tree;     // RGBA32F, one row: per label (parent, depth, saddle value)
 
 uniform ivec3 u_dims;
 uniform vec3 u_origin;        // LPS of voxel (0, 0, 0)
@@ -58,6 +65,88 @@ float pixel_hash(uvec2 p)
     return float(h & 0xffffffu) / 16777216.0;
 }
 
+// Corner m of the cell at c: bit 0 along i, bit 1 along j, bit 2 along k
+// (not along an axis of one voxel).
+ivec3 corner(ivec3 c, int m, ivec3 wide)
+{
+    return c + ivec3(m & 1, (m >> 1) & 1, (m >> 2) & 1) * wide;
+}
+
+#ifdef RESOLVE
+// The label of a sample of `value` in a cell of mixed labels: from a
+// lowest and a highest corner, up the tree, the deeper first, until a
+// saddle lies between (LabelTree::resolve).
+int resolved_label(ivec3 c, ivec3 wide, float value)
+{
+    float low_value = 3.0e38, high_value = -3.0e38;
+    ivec3 low_at = c, high_at = c;
+    for (int m = 0; m < 8; ++m) {
+        ivec3 p = corner(c, m, wide);
+        float v = texelFetch(u_values, p, 0).r;
+        if (v < low_value) {
+            low_value = v;
+            low_at = p;
+        }
+        if (v > high_value) {
+            high_value = v;
+            high_at = p;
+        }
+    }
+    int low = int(texelFetch(u_labels, low_at, 0).r >> 1u), high = int(texelFetch(u_labels, high_at, 0).r >> 1u);
+    for (int n = 0; n < 65536 && low != high; ++n) {
+        vec4 l = texelFetch(u_tree, ivec2(low, 0), 0), h = texelFetch(u_tree, ivec2(high, 0), 0);
+        if (h.y > l.y) {
+            if (h.z <= value)
+                return high;
+            high = int(h.x);
+        } else {
+            if (l.z >= value)
+                return low;
+            low = int(l.x);
+        }
+    }
+    return low;
+}
+#endif
+
+#ifdef SMOOTH
+// The gradient at the sample (SampleGradient): xyz its unit direction (0
+// where it vanishes), w its magnitude on the 8-bit scale.
+vec4 sample_gradient(ivec3 c, ivec3 wide, vec3 f)
+{
+    vec3 g = vec3(1.0) - f;
+    vec3 sum = vec3(0.0);
+    float magnitude = 0.0;
+    for (int m = 0; m < 8; ++m) {
+        float w = ((m & 1) != 0 ? f.x : g.x) * ((m & 2) != 0 ? f.y : g.y) * ((m & 4) != 0 ? f.z : g.z);
+        ivec4 nv = texelFetch(u_normals, corner(c, m, wide), 0);
+        float byte = float(nv.w + 128);
+        magnitude += w * byte;
+        sum += (w * (byte + 0.25)) * vec3(nv.xyz);
+    }
+    float len = length(sum);
+    return vec4(len > 0.0 ? sum / len : vec3(0.0), magnitude);
+}
+#endif
+
+// Where the ray o + t d (t >= 0) is inside the box [lo, hi]: x > y when it
+// misses.
+vec2 chord(vec3 o, vec3 d, vec3 lo, vec3 hi)
+{
+    float t0 = 0.0, t1 = 3.0e38;
+    for (int a = 0; a < 3; ++a) {
+        if (abs(d[a]) < 1e-12) {
+            if (o[a] < lo[a] || o[a] > hi[a])
+                t1 = -1.0;
+            continue;
+        }
+        float ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+        t0 = max(t0, min(ta, tb));
+        t1 = min(t1, max(ta, tb));
+    }
+    return vec2(t0, t1);
+}
+
 // The first position of the ray's lattice past the block holding cell c.
 float skip_block(vec3 o, vec3 d, float t, float offset, ivec3 c)
 {
@@ -86,17 +175,12 @@ void main()
 
     vec3 o = u_to_voxel * (eye - u_origin);
     vec3 d = u_to_voxel * dir;
-    float t0 = 0.0, t1 = 3.0e38;
-    for (int a = 0; a < 3; ++a) {
-        if (abs(d[a]) < 1e-12) {
-            if (o[a] < u_content_low[a] || o[a] > u_content_high[a])
-                t1 = -1.0;
-            continue;
-        }
-        float ta = (u_content_low[a] - o[a]) / d[a], tb = (u_content_high[a] - o[a]) / d[a];
-        t0 = max(t0, min(ta, tb));
-        t1 = min(t1, max(ta, tb));
-    }
+    vec2 content = chord(o, d, u_content_low, u_content_high);
+    float t0 = content.x, t1 = content.y;
+    // Entering and leaving through the volume's own faces, the first and
+    // last samples stand for the part of a step up to the face.
+    vec2 volume = chord(o, d, vec3(0.0), vec3(u_dims - 1));
+    bool enters_face = t0 > 0.0 && abs(t0 - volume.x) < 1e-4, leaves_face = abs(t1 - volume.y) < 1e-4;
 
 #ifdef JITTER
     float fraction = pixel_hash(uvec2(at));
@@ -106,6 +190,7 @@ void main()
 #endif
     float offset = fraction * u_step;
     float t = ceil((t0 - offset) / u_step) * u_step + offset;
+    float first = t;
     ivec3 last = max(u_dims - 2, ivec3(0));
     ivec3 wide = ivec3(greaterThan(u_dims, ivec3(1)));
     vec3 light = -dir;
@@ -126,8 +211,11 @@ void main()
         vec3 f = x - vec3(c);
         float value = texture(u_values, (x + 0.5) / vec3(u_dims)).r;
         ivec3 nearest = c + ivec3(greaterThanEqual(f, vec3(0.5))) * wide;
-#ifdef LABELLED
-        int label = int(texelFetch(u_labels, nearest, 0).r);
+#if defined(LABELLED) && defined(RESOLVE)
+        uint word = texelFetch(u_labels, c, 0).r;
+        int label = (word & 1u) != 0u ? resolved_label(c, wide, value) : int(word >> 1u);
+#elif defined(LABELLED)
+        int label = int(texelFetch(u_labels, nearest, 0).r >> 1u);
 #else
         int label = 0;
 #endif
@@ -136,16 +224,33 @@ void main()
         vec4 s = texelFetch(u_lut, ivec2(int(index + 0.5), label), 0);
         if (s.a > 0.0) {
 #if defined(SHADED) || defined(BOUNDARY)
+#ifdef SMOOTH
+            vec4 gradient = sample_gradient(c, wide, f);
+            vec3 n = gradient.xyz;
+            float magnitude = gradient.w;
+#else
             ivec4 nv = texelFetch(u_normals, nearest, 0);
+            vec3 n = vec3(nv.xyz) / 127.0;
+            float magnitude = float(nv.w + 128);
 #endif
+#endif
+            float m = 1.0;
 #ifdef BOUNDARY
-            float m = texelFetch(u_factors, ivec2(nv.w + 128, 0), 0).r;
-            s *= m;
+            m = texelFetch(u_factors, ivec2(int(magnitude + 0.5), 0), 0).r;
 #endif
+            float steps = 1.0;
+            if (enters_face && t == first)
+                steps += (t - t0) / u_step - 0.5;
+            if (leaves_face && t + u_step > t1)
+                steps += (t1 - t) / u_step - 0.5;
+            if (steps != 1.0) {
+                float a = s.a * m;
+                m *= a < 1.0 ? (1.0 - pow(1.0 - a, steps)) / a : 1.0;
+            }
+            s *= m;
 #ifdef SHADED
-            if (nv.x != 0 || nv.y != 0 || nv.z != 0) {
-                vec3 n = vec3(nv.xyz) / 127.0;
-                float ndl = abs(dot(n, light));
+            if (n != vec3(0.0)) {
+                float ndl = min(1.0, abs(dot(n, light)));
                 float spec = texelFetch(u_factors, ivec2(int(ndl * 256.0), 1), 0).r * s.a;
                 float lit = u_ambient + u_diffuse * ndl;
 #ifdef OCCLUSION

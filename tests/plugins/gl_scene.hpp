@@ -1,6 +1,7 @@
 // gl_scene.hpp - the scene the OpenGL ray caster's tests render through
-// it and through the CPU ray caster: a labelled ball in a shell, three ramp
-// functions, a perspective camera (test_renderer_gl*.cpp).
+// it and through the CPU ray caster: a labelled ball in a shell (with the
+// labels' tree, so samples resolve their labels), three ramp functions, a
+// perspective camera (test_renderer_gl*.cpp).
 #pragma once
 
 #include "plugin_fixture.hpp"
@@ -51,6 +52,9 @@ inline void ramp_function(TransferFunctions &tf, uint32_t b, std::array<float, 3
 struct Pair {
     Volume volume = ball_in_shell();
     std::vector<uint32_t> labels = std::vector<uint32_t>(kN * kN * kN, 0);
+    // How the labels nest: samples in mixed cells resolve their labels.
+    std::vector<int32_t> parent{-1, 0, 0};
+    std::vector<double> saddle{0.0, 40.0, 60.0};
     TransferFunctions tf{3, kLut, 1.0};
     PluginInstance gl = test::built_plugins().create(kGl);
     PluginInstance cpu = test::built_plugins().create(kCpu);
@@ -83,6 +87,8 @@ struct Pair {
         map.label_count = 3;
         map.dims[0] = map.dims[1] = map.dims[2] = kN;
         map.labels = labels.data();
+        map.parent = parent.data();
+        map.saddle_value = saddle.data();
         request.struct_size = sizeof request;
         request.volume = &view;
         request.labels = &map;
