@@ -102,57 +102,6 @@ void BoundaryEmphasis::build(const ClassTable &table, double strength)
         factor_[q] = static_cast<float>(1.0 - strength + strength * std::min(1.0, static_cast<double>(q) / reference));
 }
 
-void AmbientOcclusion::build(const VoxelGrid &g, const ClassTable &table, const BoundaryEmphasis &boundaries)
-{
-    hx_ = (g.nx + 1) / 2;
-    hy_ = (g.ny + 1) / 2;
-    hz_ = (g.nz + 1) / 2;
-    const std::size_t n = static_cast<std::size_t>(hx_ * hy_ * hz_);
-    std::vector<float> density(n, 0.0f), blurred(n, 0.0f);
-    // Mean opacity per step of each 2^3 cell.
-    for (int64_t k = 0; k < g.nz; ++k)
-        for (int64_t j = 0; j < g.ny; ++j)
-            for (int64_t i = 0; i < g.nx; ++i) {
-                const std::size_t v = g.index(i, j, k);
-                float a = table.lookup(g.label.empty() ? 0u : g.label[v], g.value[v])[3];
-                if (boundaries.active())
-                    a *= boundaries.factor(g.surface[v].gradient);
-                density[static_cast<std::size_t>((i >> 1) + hx_ * ((j >> 1) + hy_ * (k >> 1)))] += a / 8.0f;
-            }
-    // A box blur of radius 3 cells along each axis in turn, twice: close to
-    // a Gaussian, in running sums.
-    const int64_t r = 3;
-    const int64_t dims[3] = {hx_, hy_, hz_}, strides[3] = {1, hx_, hx_ * hy_};
-    for (int pass = 0; pass < 2; ++pass)
-        for (int axis = 0; axis < 3; ++axis) {
-            const int64_t len = dims[axis], stride = strides[axis];
-            for (std::size_t start = 0; start < n; ++start) {
-                // Each line once: from its first cell along the axis.
-                if ((static_cast<int64_t>(start) / stride) % len != 0)
-                    continue;
-                double sum = 0;
-                int64_t count = 0;
-                for (int64_t x = 0; x < std::min(r, len); ++x, ++count)
-                    sum += density[start + static_cast<std::size_t>(x * stride)];
-                for (int64_t x = 0; x < len; ++x) {
-                    if (x + r < len) {
-                        sum += density[start + static_cast<std::size_t>((x + r) * stride)];
-                        ++count;
-                    }
-                    if (x - r - 1 >= 0) {
-                        sum -= density[start + static_cast<std::size_t>((x - r - 1) * stride)];
-                        --count;
-                    }
-                    blurred[start + static_cast<std::size_t>(x * stride)] = static_cast<float>(sum / count);
-                }
-            }
-            std::swap(density, blurred);
-        }
-    occlusion_.resize(n);
-    for (std::size_t c = 0; c < n; ++c) // filled space around: 1 - e^(-k density)
-        occlusion_[c] = static_cast<uint8_t>(std::lround(255.0 * (1.0 - std::exp(-12.0 * density[c]))));
-}
-
 void Occupancy::build(const BlockStatistics &blocks, const ClassTable &table, const std::array<int64_t, 3> &dims)
 {
     bx_ = blocks.bx();

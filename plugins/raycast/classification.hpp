@@ -80,29 +80,6 @@ private:
     bool active_ = false;
 };
 
-// Ambient occlusion, the cheap local kind (after Hernell et al.): how much
-// of the space around a voxel is filled with opacity, from the classified
-// opacity at half resolution blurred over about 6 voxels; crevices and the
-// insides of folds darken, so shape reads without a light to cast shadows.
-class AmbientOcclusion {
-public:
-    void build(const VoxelGrid &g, const ClassTable &table, const BoundaryEmphasis &boundaries);
-    // Occlusion in [0, 1] around voxel (i, j, k).
-    float at(int64_t i, int64_t j, int64_t k) const
-    {
-        return occlusion_[static_cast<std::size_t>((i >> 1) + hx_ * ((j >> 1) + hy_ * (k >> 1)))] / 255.0f;
-    }
-    bool built() const { return !occlusion_.empty(); }
-    void clear() { occlusion_.clear(); }
-    // The half-resolution grid: its size and the occlusion * 255, i fastest.
-    std::array<int64_t, 3> dims() const { return {hx_, hy_, hz_}; }
-    const std::vector<uint8_t> &values() const { return occlusion_; }
-
-private:
-    int64_t hx_ = 0, hy_ = 0, hz_ = 0;
-    std::vector<uint8_t> occlusion_;
-};
-
 class Occupancy {
 public:
     static constexpr int64_t kBlock = BlockStatistics::kBlock; // the ray caster divides by it with >> 3

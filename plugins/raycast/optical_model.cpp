@@ -22,8 +22,9 @@ std::vector<sdk::ParamSpec> optical_model_params()
             sdk::ParamSpec::real("shininess", "Shininess", 24.0, 1.0, 256.0).group("Shading"),
             sdk::ParamSpec::real("ambient-occlusion", "Ambient occlusion", 0.0, 0.0, 1.0)
                 .group("Shading")
-                .hint("Darken samples by how filled with opacity the space around them is (local ambient "
-                      "occlusion): crevices and folds read without shadows; 0 turns it off"),
+                .hint("Local ambient occlusion: short rays from each visible sample measure how much of the "
+                      "space on its side is filled with opacity, and darken it by that much (to at most 70 %): "
+                      "crevices and folds read without shadows; 0 turns it off"),
             sdk::ParamSpec::real("boundary-emphasis", "Boundary emphasis", 0.8, 0.0, 1.0)
                 .hint("Scale opacity by the steepness of the field (gradient magnitude), so structures read "
                       "as surfaces and homogeneous interiors thin out; 0 turns it off"),

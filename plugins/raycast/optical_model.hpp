@@ -19,6 +19,10 @@ namespace arbor::raycast {
 // then one of 2, 2.5, ... 8.
 constexpr double kCoarseStart = 4, kCoarseMin = 2, kCoarseMax = 8, kCoarseStepBy = 0.5;
 constexpr double kCoarseStep = 2.0; // the coarse pass samples at this many times the full step
+// A step in a cell where structures meet (labels per sample) is taken as
+// this many samples, so a structure thinner than a step is not missed
+// between samples (the GLSL ray caster's four).
+constexpr int kRefine = 4;
 
 // The parameters of the optical model and the coarse pass, in the order
 // the renderers list them.

@@ -19,6 +19,7 @@
 #include "cell_sample.hpp"
 #include "classification.hpp"
 #include "coarse_lattice.hpp"
+#include "local_occlusion.hpp"
 #include "optical_model.hpp"
 #include "ray_geometry.hpp"
 #include "voxel_grid.hpp"
@@ -121,7 +122,7 @@ public:
         Pass pass;
         pass.grid = &g;
         pass.occupancy = &occupancy_;
-        pass.occlusion = shading_occlusion_;
+        pass.occlusion = shading.enabled ? static_cast<float>(params().number("ambient-occlusion")) : 0.0f;
         pass.shading = &shading;
         pass.camera = std::make_unique<Camera>(*request.camera, request.frame_width, request.frame_height);
         pass.termination = static_cast<float>(params().number("termination"));
@@ -132,6 +133,7 @@ public:
         pass.coarse = coarse;
         pass.step = step_ * (pass.coarse ? kCoarseStep : 1.0);
         pass.table = pass.coarse ? &coarse_table_ : &table_;
+        pass.refined = pass.coarse ? &coarse_refined_table_ : &refined_table_;
         pass.sample_index = request.pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? request.sample_index : 0;
 
         const unsigned threads = params().integer("threads") > 0 ? static_cast<unsigned>(params().integer("threads"))
@@ -174,9 +176,10 @@ private:
         double pixels = kCoarseStart; // COARSE: one ray per pixels x pixels
         const VoxelGrid *grid = nullptr;
         const Occupancy *occupancy = nullptr;
-        float occlusion = 0.0f; // ambient occlusion's strength (full resolution only)
+        float occlusion = 0.0f; // local ambient occlusion's strength
         const Shading *shading = nullptr;
         const ClassTable *table = nullptr;
+        const ClassTable *refined = nullptr; // a step of kRefine samples in a mixed cell
         std::unique_ptr<Camera> camera;
         float termination = 0.99f;
         bool jitter = true, coarse = false;
@@ -213,19 +216,17 @@ private:
             table_print_ = 0;
             table_.build(tf, step);
             coarse_table_.build(tf, step * kCoarseStep);
+            refined_table_.build(tf, step / kRefine);
+            coarse_refined_table_.build(tf, step * kCoarseStep / kRefine);
             // Which blocks are empty does not depend on the step: one grid
             // of flags serves both passes.
             occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz});
             boundaries_.build(table_, emphasis);
-            occlusion_.clear();
+            occlusion_.build(g, tf);
             table_print_ = print;
             step_ = step;
             emphasis_ = emphasis;
         }
-        const float occlusion = static_cast<float>(params().number("ambient-occlusion"));
-        if (occlusion > 0 && !occlusion_.built())
-            occlusion_.build(g, table_, boundaries_);
-        shading_occlusion_ = occlusion_.built() ? occlusion : 0.0f;
         return g;
     }
 
@@ -308,14 +309,13 @@ private:
     Sample cast(const Pass &pass, double px_frame, double py_frame, double offset_fraction, double *visibility) const
     {
         const VoxelGrid &g = *pass.grid;
-        const Shading &shading = *pass.shading;
         const ClassTable &table = *pass.table;
         const Occupancy &occupancy = *pass.occupancy;
         const float termination = pass.termination;
         const double step = pass.step;
         const float *background = pass.background;
         const Ray ray = pass.camera->ray(px_frame, py_frame);
-        // The ray in voxel index space, clipped to the box of voxel centres.
+        // The ray in voxel index space.
         const Vec3 o = mul(g.to_voxel, {ray.origin[0] - g.origin[0], ray.origin[1] - g.origin[1],
                                         ray.origin[2] - g.origin[2]});
         const Vec3 d = mul(g.to_voxel, ray.direction); // voxels per mm
@@ -329,10 +329,13 @@ private:
                                     {static_cast<double>(g.nx - 1), static_cast<double>(g.ny - 1),
                                      static_cast<double>(g.nz - 1)});
         const bool enters_face = t0 > 0 && std::fabs(t0 - v0) < 1e-9, leaves_face = std::fabs(t1 - v1) < 1e-9;
-        float acc[4] = {0, 0, 0, 0};
-        float depth = std::numeric_limits<float>::infinity();
-        const float light[3] = {static_cast<float>(-ray.direction[0]), static_cast<float>(-ray.direction[1]),
-                                static_cast<float>(-ray.direction[2])};
+        Along along;
+        along.visibility = visibility;
+        along.offset_fraction = static_cast<float>(offset_fraction);
+        for (int a = 0; a < 3; ++a) {
+            along.light[a] = static_cast<float>(-ray.direction[a]);
+            along.high[a] = static_cast<double>((a == 0 ? g.nx : a == 1 ? g.ny : g.nz) - 1);
+        }
         // Start on the global sample lattice, so images do not shimmer as the
         // box is clipped, shifted by a fixed per-pixel fraction of a step.
         const double offset = offset_fraction * step;
@@ -341,13 +344,15 @@ private:
         const int64_t last_i = std::max<int64_t>(g.nx - 2, 0), last_j = std::max<int64_t>(g.ny - 2, 0),
                       last_k = std::max<int64_t>(g.nz - 2, 0);
         const bool labelled = !g.label.empty();
-        const bool resolve = labelled && pass.sample_labels && !g.tree.empty();
-        const bool smooth = pass.sample_gradients;
+        // Where structures meet, a structure thinner than a step (a thin
+        // shell's region between its saddle's isosurfaces) would be missed
+        // between samples, or caught by one sample in a few (speckle): a
+        // sample in a mixed cell is taken as kRefine samples across its step.
+        const bool refine = labelled && pass.sample_labels && !g.tree.empty();
         const bool prefetch = g.nx * g.ny * g.nz >= kPrefetchFrom;
         const VoxelGrid::Strides cell_strides = g.strides();
-        const CellCorners corners(cell_strides);
         const int64_t dj = cell_strides.j, dk = cell_strides.k;
-        while (t <= t1 && acc[3] < termination) {
+        while (t <= t1 && along.acc[3] < termination) {
             const double px = o[0] + t * d[0], py = o[1] + t * d[1], pz = o[2] + t * d[2];
             const int64_t i = std::min(static_cast<int64_t>(px), last_i);
             const int64_t j = std::min(static_cast<int64_t>(py), last_j);
@@ -373,78 +378,123 @@ private:
                 if (labelled)
                     g.label.prefetch(cell);
             }
-            const std::size_t base = g.index(i, j, k);
-            const Cell cell(g, base, corners, static_cast<float>(px - i), static_cast<float>(py - j),
-                            static_cast<float>(pz - k));
-            const float value = cell.value();
-            // With labels or gradients per sample off: the nearest voxel's.
-            const auto nearest = [&] {
-                return g.index(i + (cell.fx >= 0.5f && g.nx > 1), j + (cell.fy >= 0.5f && g.ny > 1),
-                               k + (cell.fz >= 0.5f && g.nz > 1));
-            };
-            uint32_t label = 0;
-            if (resolve) {
-                const uint32_t word = g.label.word(base);
-                label = word & 1u ? cell.resolved_label(g, base, corners, value) : word >> 1;
-            } else if (labelled) {
-                label = g.label[nearest()];
-            }
-            const float *c = table.lookup(label, value);
-            if (c[3] > 0.0f) {
-                float n[3], gradient;
-                if (smooth) {
-                    const SampleGradient at(g, base, corners, cell);
-                    n[0] = at.normal[0], n[1] = at.normal[1], n[2] = at.normal[2];
-                    gradient = at.magnitude;
-                } else {
-                    const Surface &surface = g.surface[nearest()];
-                    n[0] = surface.normal[0] / 127.0f, n[1] = surface.normal[1] / 127.0f,
-                    n[2] = surface.normal[2] / 127.0f;
-                    gradient = surface.gradient;
+            if (refine && (g.label.word(g.index(i, j, k)) & 1u)) {
+                const double sub = step / kRefine;
+                for (int m = 0; m < kRefine && along.acc[3] < termination; ++m) {
+                    const double ts = t + (m + 0.5 - 0.5 * kRefine) * sub;
+                    if (ts < t0 || ts > t1)
+                        continue;
+                    const double at[3] = {o[0] + ts * d[0], o[1] + ts * d[1], o[2] + ts * d[2]};
+                    integrate(pass, *pass.refined, at, 1.0f, ts, along);
                 }
-                float m = boundaries_.active() ? boundaries_.factor(static_cast<uint8_t>(gradient + 0.5f)) : 1.0f;
+            } else {
                 // A sample stands for the step around it; at a face, for
-                // the part of it inside: opacity 1 - (1 - a)^steps.
+                // the part of it inside.
                 float steps = 1.0f;
                 if (enters_face && t == first)
                     steps += static_cast<float>((t - t0) / step) - 0.5f;
                 if (leaves_face && t + step > t1)
                     steps += static_cast<float>((t1 - t) / step) - 0.5f;
-                if (steps != 1.0f) {
-                    const float a = c[3] * m;
-                    m *= a < 1.0f ? (1.0f - std::pow(1.0f - a, steps)) / a : 1.0f;
-                }
-                const float alpha = c[3] * m;
-                float r = c[0] * m, gr = c[1] * m, b = c[2] * m;
-                if (shading.enabled && (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f)) {
-                    const float ndl = std::min(1.0f, std::fabs(n[0] * light[0] + n[1] * light[1] + n[2] * light[2]));
-                    // Headlight: the half vector is the light direction.
-                    const float spec = shading.highlight[static_cast<std::size_t>(ndl * 256.0f)] * alpha;
-                    float lit = shading.ambient + shading.diffuse * ndl;
-                    if (pass.occlusion > 0)
-                        lit *= 1.0f - pass.occlusion * occlusion_.at(i, j, k);
-                    r = r * lit + spec;
-                    gr = gr * lit + spec;
-                    b = b * lit + spec;
-                }
-                const float w = 1.0f - acc[3];
-                acc[0] += w * r;
-                acc[1] += w * gr;
-                acc[2] += w * b;
-                acc[3] += w * alpha;
-                visibility[label] += w * alpha;
-                if (acc[3] >= 0.5f && depth == std::numeric_limits<float>::infinity())
-                    depth = static_cast<float>(t); // rays start at the camera (plane): t is the distance
+                const double at[3] = {px, py, pz};
+                integrate(pass, table, at, steps, t, along);
             }
             t += step;
         }
         Sample out;
-        const float rest = 1.0f - acc[3];
+        const float rest = 1.0f - along.acc[3];
         for (int ch = 0; ch < 3; ++ch)
-            out.rgba[ch] = std::min(1.0f, acc[ch] + rest * background[ch] * background[3]);
-        out.rgba[3] = std::min(1.0f, acc[3] + rest * background[3]);
-        out.depth = depth;
+            out.rgba[ch] = std::min(1.0f, along.acc[ch] + rest * background[ch] * background[3]);
+        out.rgba[3] = std::min(1.0f, along.acc[3] + rest * background[3]);
+        out.depth = along.depth;
         return out;
+    }
+
+    // What a ray has gathered so far, and what its samples share.
+    struct Along {
+        float acc[4] = {0, 0, 0, 0}; // premultiplied colour and opacity
+        float depth = std::numeric_limits<float>::infinity();
+        double *visibility = nullptr; // per label, T * alpha
+        float light[3] = {0, 0, 0};   // towards the camera
+        double high[3] = {0, 0, 0};   // the last voxel index along each axis
+        float offset_fraction = 0;
+    };
+
+    // The sample at voxel position `at` composited into the ray: its
+    // value, label and gradient from its cell, classified by `table`,
+    // opacity 1 - (1 - a)^steps, shaded, at distance t.
+    void integrate(const Pass &pass, const ClassTable &table, const double at[3], float steps, double t,
+                   Along &along) const
+    {
+        const VoxelGrid &g = *pass.grid;
+        const Shading &shading = *pass.shading;
+        double p[3];
+        int64_t c[3];
+        for (int a = 0; a < 3; ++a) {
+            p[a] = std::clamp(at[a], 0.0, along.high[a]);
+            c[a] = std::min(static_cast<int64_t>(p[a]), std::max<int64_t>(static_cast<int64_t>(along.high[a]) - 1, 0));
+        }
+        const CellCorners corners(g.strides());
+        const std::size_t base = g.index(c[0], c[1], c[2]);
+        const Cell cell(g, base, corners, static_cast<float>(p[0] - c[0]), static_cast<float>(p[1] - c[1]),
+                        static_cast<float>(p[2] - c[2]));
+        const float value = cell.value();
+        // With labels or gradients per sample off: the nearest voxel's.
+        const auto nearest = [&] {
+            return g.index(c[0] + (cell.fx >= 0.5f && g.nx > 1), c[1] + (cell.fy >= 0.5f && g.ny > 1),
+                           c[2] + (cell.fz >= 0.5f && g.nz > 1));
+        };
+        uint32_t label = 0;
+        if (!g.label.empty() && pass.sample_labels && !g.tree.empty()) {
+            const uint32_t word = g.label.word(base);
+            label = word & 1u ? cell.resolved_label(g, base, corners, value) : word >> 1;
+        } else if (!g.label.empty()) {
+            label = g.label[nearest()];
+        }
+        const float *colour = table.lookup(label, value);
+        if (!(colour[3] > 0.0f))
+            return;
+        float n[3] = {0, 0, 0}, gradient = 0; // unless shaded or emphasised
+        if ((shading.enabled || boundaries_.active()) && pass.sample_gradients) {
+            const SampleGradient at_sample(g, base, corners, cell);
+            n[0] = at_sample.normal[0], n[1] = at_sample.normal[1], n[2] = at_sample.normal[2];
+            gradient = at_sample.magnitude;
+        } else if (shading.enabled || boundaries_.active()) {
+            const Surface &surface = g.surface[nearest()];
+            n[0] = surface.normal[0] / 127.0f, n[1] = surface.normal[1] / 127.0f, n[2] = surface.normal[2] / 127.0f;
+            gradient = surface.gradient;
+        }
+        float m = boundaries_.active() ? boundaries_.factor(static_cast<uint8_t>(gradient + 0.5f)) : 1.0f;
+        if (steps != 1.0f) {
+            const float a = colour[3] * m;
+            m *= a < 1.0f ? (1.0f - std::pow(1.0f - a, steps)) / a : 1.0f;
+        }
+        const float alpha = colour[3] * m;
+        float r = colour[0] * m, gr = colour[1] * m, b = colour[2] * m;
+        const float w = 1.0f - along.acc[3];
+        if (shading.enabled && (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f)) {
+            const float facing = n[0] * along.light[0] + n[1] * along.light[1] + n[2] * along.light[2];
+            const float ndl = std::min(1.0f, std::fabs(facing));
+            // Headlight: the half vector is the light direction.
+            const float spec = shading.highlight[static_cast<std::size_t>(ndl * 256.0f)] * alpha;
+            float lit = shading.ambient + shading.diffuse * ndl;
+            if (pass.occlusion > 0 && w * alpha >= LocalOcclusion::kContribution) {
+                // The side of the surface the viewer sees.
+                const float sign = facing >= 0.0f ? 1.0f : -1.0f;
+                const float side[3] = {sign * n[0], sign * n[1], sign * n[2]};
+                lit *= 1.0f -
+                       pass.occlusion * (1.0f - occlusion_.visibility(g, boundaries_, p, side, along.offset_fraction));
+            }
+            r = r * lit + spec;
+            gr = gr * lit + spec;
+            b = b * lit + spec;
+        }
+        along.acc[0] += w * r;
+        along.acc[1] += w * gr;
+        along.acc[2] += w * b;
+        along.acc[3] += w * alpha;
+        along.visibility[label] += w * alpha;
+        if (along.acc[3] >= 0.5f && along.depth == std::numeric_limits<float>::infinity())
+            along.depth = static_cast<float>(t); // rays start at the camera (plane): t is the distance
     }
 
     // Where the ray o + t d (t >= 0) is inside the box [lo, hi]: t0 > t1
@@ -489,11 +539,10 @@ private:
     VoxelGridCache grid_;
     BlockStatistics blocks_;
     uint64_t blocks_generation_ = ~uint64_t{0};
-    ClassTable table_, coarse_table_;
+    ClassTable table_, coarse_table_, refined_table_, coarse_refined_table_;
     Occupancy occupancy_;
     BoundaryEmphasis boundaries_;
-    AmbientOcclusion occlusion_;
-    float shading_occlusion_ = 0.0f;
+    LocalOcclusion occlusion_;
     uint64_t table_print_ = 0;
     double step_ = -1.0, emphasis_ = -1.0;
     CoarseRate coarse_rate_;

@@ -25,8 +25,8 @@ struct ContextState {
     RaycastPrograms programs;
     VolumeTextures textures;
     // What the textures hold: the grid's generation and values generation,
-    // the classification tables' and the occlusion's generations.
-    uint64_t grid = kNotUploaded, values = kNotUploaded, tables = kNotUploaded, occlusion = kNotUploaded;
+    // and the classification tables' generation.
+    uint64_t grid = kNotUploaded, values = kNotUploaded, tables = kNotUploaded;
 
     // The vertex array and framebuffers, made once (the context is current).
     void make_objects()

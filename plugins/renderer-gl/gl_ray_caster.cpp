@@ -41,7 +41,7 @@ const arbor_plugin_descriptor kGlRayCasterDescriptor = {
     "1.0.0",
     "Arbor",
     "The CPU ray caster's optical model (label-aware post-classification, boundary emphasis, Blinn-Phong, "
-    "ambient occlusion, empty-space skipping) in a GLSL 3.3 shader, offscreen through EGL or into the host's OpenGL "
+    "local ambient occlusion, empty-space skipping) in a GLSL 3.3 shader, offscreen through EGL or into the host's OpenGL "
     "context; tiles, a coarse pass and supersampling (arbor.renderer/2, arbor.renderer-gl/1).",
     "",
 };
@@ -236,21 +236,18 @@ private:
             tf_revision_ = 0;
             table_.build(tf, step);
             coarse_table_.build(tf, step * raycast::kCoarseStep);
+            refined_table_.build(tf, step / raycast::kRefine);
+            coarse_refined_table_.build(tf, step * raycast::kCoarseStep / raycast::kRefine);
             occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz});
             boundaries_.build(table_, emphasis);
+            occlusion_.build(g, tf);
             ++tables_generation_;
-            occlusion_.clear();
             tf_revision_ = print;
             step_ = step;
             emphasis_ = emphasis;
             shading_ = shading;
         }
-        const double occlusion = params().number("ambient-occlusion");
-        if (occlusion > 0 && !occlusion_.built()) {
-            occlusion_.build(g, table_, boundaries_);
-            ++occlusion_generation_;
-        }
-        occlusion_strength_ = occlusion_.built() ? static_cast<float>(occlusion) : 0.0f;
+        occlusion_strength_ = static_cast<float>(params().number("ambient-occlusion"));
         prepared_grid_ = grid_.generation();
         return g;
     }
@@ -272,13 +269,9 @@ private:
         if (s.tables != tables_generation_) {
             s.tables = kNotUploaded;
             s.textures.upload_blocks(occupancy_);
-            s.textures.upload_tables(table_, coarse_table_, boundaries_, shading_);
+            s.textures.upload_tables({table_, coarse_table_, refined_table_, coarse_refined_table_}, occlusion_,
+                                     boundaries_, shading_);
             s.tables = tables_generation_;
-        }
-        if (occlusion_.built() && s.occlusion != occlusion_generation_) {
-            s.occlusion = kNotUploaded;
-            s.textures.upload_occlusion(occlusion_);
-            s.occlusion = occlusion_generation_;
         }
     }
 
@@ -423,7 +416,10 @@ private:
         glUniform1i(at("u_factors"), unit::factors);
         glUniform1i(at("u_occlusion"), unit::occlusion);
         glUniform1i(at("u_tree"), unit::tree);
+        glUniform1i(at("u_refined"), unit::refined);
         glUniform1f(at("u_occlusion_strength"), occlusion_strength_);
+        glUniform3fv(at("u_occlusion_world"), raycast::LocalOcclusion::kDirections, occlusion_.world()[0].data());
+        glUniform3fv(at("u_occlusion_step"), raycast::LocalOcclusion::kDirections, occlusion_.steps()[0].data());
         glUniform3i(at("u_dims"), static_cast<GLint>(g.nx), static_cast<GLint>(g.ny), static_cast<GLint>(g.nz));
         vec3("u_origin", g.origin);
         float to_voxel[9];
@@ -525,15 +521,15 @@ private:
 
     raycast::VoxelGridCache grid_;
     raycast::BlockStatistics blocks_;
-    raycast::ClassTable table_, coarse_table_;
+    raycast::ClassTable table_, coarse_table_, refined_table_, coarse_refined_table_;
     raycast::Occupancy occupancy_;
     raycast::BoundaryEmphasis boundaries_;
-    raycast::AmbientOcclusion occlusion_;
+    raycast::LocalOcclusion occlusion_;
     float occlusion_strength_ = 0.0f;
     raycast::Shading shading_;
     raycast::CoarseRate coarse_rate_;
     uint64_t prepared_grid_ = kNotUploaded; // the grid generation blocks_ and boundaries_ were built for
-    uint64_t tables_generation_ = 0, occlusion_generation_ = 0;
+    uint64_t tables_generation_ = 0;
     uint64_t tf_revision_ = 0;
     double step_ = -1.0, emphasis_ = -1.0;
 };

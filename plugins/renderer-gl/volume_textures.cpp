@@ -118,9 +118,10 @@ void VolumeTextures::upload_blocks(const raycast::Occupancy &occupancy)
     check_gl("uploading the empty blocks");
 }
 
-void VolumeTextures::upload_tables(const raycast::ClassTable &table, const raycast::ClassTable &coarse,
+void VolumeTextures::upload_tables(const Tables &tables, const raycast::LocalOcclusion &occlusion,
                                    const raycast::BoundaryEmphasis &boundaries, const raycast::Shading &shading)
 {
+    const raycast::ClassTable &table = tables.full;
     GLint largest = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &largest);
     const GLsizei entries = static_cast<GLsizei>(table.entries()), labels = static_cast<GLsizei>(table.labels());
@@ -128,7 +129,10 @@ void VolumeTextures::upload_tables(const raycast::ClassTable &table, const rayca
         throw std::runtime_error(std::to_string(labels) + " lookup tables of " + std::to_string(entries) +
                                  " entries exceed this OpenGL's texture size of " + std::to_string(largest));
     texture_2d(lut_, GL_RGBA32F, entries, labels, GL_RGBA, table.rgba().data());
-    texture_2d(coarse_lut_, GL_RGBA32F, entries, labels, GL_RGBA, coarse.rgba().data());
+    texture_2d(coarse_lut_, GL_RGBA32F, entries, labels, GL_RGBA, tables.coarse.rgba().data());
+    texture_2d(refined_lut_, GL_RGBA32F, entries, labels, GL_RGBA, tables.full_refined.rgba().data());
+    texture_2d(coarse_refined_lut_, GL_RGBA32F, entries, labels, GL_RGBA, tables.coarse_refined.rgba().data());
+    texture_2d(occlusion_lut_, GL_RGBA32F, entries, labels, GL_RGBA, occlusion.table().rgba().data());
     std::vector<float> ranges(4 * static_cast<std::size_t>(labels));
     for (GLsizei l = 0; l < labels; ++l) {
         const auto &r = table.range(static_cast<uint32_t>(l));
@@ -144,12 +148,6 @@ void VolumeTextures::upload_tables(const raycast::ClassTable &table, const rayca
     check_gl("uploading the lookup tables");
 }
 
-void VolumeTextures::upload_occlusion(const raycast::AmbientOcclusion &occlusion)
-{
-    texture_3d(occlusion_, GL_R8, GL_RED, GL_UNSIGNED_BYTE, occlusion.dims(), occlusion.values().data());
-    check_gl("uploading the ambient occlusion");
-}
-
 void VolumeTextures::bind(bool coarse) const
 {
     const auto at = [](unit::Unit u, GLenum target, const Texture &t) {
@@ -163,8 +161,9 @@ void VolumeTextures::bind(bool coarse) const
     at(unit::lut, GL_TEXTURE_2D, coarse ? coarse_lut_ : lut_);
     at(unit::ranges, GL_TEXTURE_2D, ranges_);
     at(unit::factors, GL_TEXTURE_2D, factors_);
-    at(unit::occlusion, GL_TEXTURE_3D, occlusion_);
+    at(unit::occlusion, GL_TEXTURE_2D, occlusion_lut_);
     at(unit::tree, GL_TEXTURE_2D, tree_);
+    at(unit::refined, GL_TEXTURE_2D, coarse ? coarse_refined_lut_ : refined_lut_);
     glActiveTexture(GL_TEXTURE0);
 }
 

@@ -10,6 +10,7 @@
 #include "gl_objects.hpp"
 
 #include <classification.hpp>
+#include <local_occlusion.hpp>
 #include <optical_model.hpp>
 #include <voxel_grid.hpp>
 
@@ -17,7 +18,7 @@ namespace arbor::glraycast {
 
 // Texture units the shader's samplers read.
 namespace unit {
-enum Unit : GLint { values = 0, labels, normals, blocks, lut, ranges, factors, occlusion, tree };
+enum Unit : GLint { values = 0, labels, normals, blocks, lut, ranges, factors, occlusion, tree, refined };
 } // namespace unit
 
 class VolumeTextures {
@@ -27,12 +28,16 @@ public:
     void upload_volume(const raycast::VoxelGrid &g);
     void upload_labels(const raycast::VoxelGrid &g);
     void upload_blocks(const raycast::Occupancy &occupancy);
-    // `table` for the full pass, `coarse` for the coarse pass (its step).
-    void upload_tables(const raycast::ClassTable &table, const raycast::ClassTable &coarse,
+    // The lookup tables of each step: the full pass's and the coarse
+    // pass's, each also for the refined step of mixed cells, and the local
+    // ambient occlusion's rays'.
+    struct Tables {
+        const raycast::ClassTable &full, &coarse, &full_refined, &coarse_refined;
+    };
+    void upload_tables(const Tables &tables, const raycast::LocalOcclusion &occlusion,
                        const raycast::BoundaryEmphasis &boundaries, const raycast::Shading &shading);
-    void upload_occlusion(const raycast::AmbientOcclusion &occlusion);
 
-    // Binds every texture to its unit; the coarse pass's lookup table
+    // Binds every texture to its unit; the coarse pass's lookup tables
     // when `coarse`.
     void bind(bool coarse) const;
     bool labelled() const { return labelled_; }
@@ -40,7 +45,8 @@ public:
     bool resolvable() const { return resolvable_; }
 
 private:
-    Texture values_, labels_, normals_, blocks_, lut_, coarse_lut_, ranges_, factors_, occlusion_, tree_;
+    Texture values_, labels_, normals_, blocks_, lut_, coarse_lut_, refined_lut_, coarse_refined_lut_, ranges_,
+        factors_, occlusion_lut_, tree_;
     bool labelled_ = false, resolvable_ = false;
 };
 

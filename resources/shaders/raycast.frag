@@ -3,8 +3,8 @@
 // front to back on the global lattice t = n * step + offset (offset a fixed
 // per-pixel fraction of a step when jittered; where the ray enters or
 // leaves through the volume's faces, the first and last samples' opacity
-// corrected for the part of their step inside), trilinear
-// values, post-classification with the lookup table of the sample's label
+// corrected for the part of their step inside), trilinear values,
+// post-classification with the lookup table of the sample's label
 // (premultiplied, opacity corrected for the step), boundary emphasis from
 // the gradient magnitude, Blinn-Phong with a headlight and two-sided
 // normals, early ray termination, empty 8^3 blocks skipped.
@@ -12,21 +12,26 @@
 // Variants are chosen when the program is built (llvmpipe runs both sides
 // of a uniform branch): LABELLED, RESOLVE (a sample in a cell of mixed
 // labels takes the label its value implies, walking the labels' tree as
-// plugins/raycast/label_tree.hpp does; else the nearest voxel's), SMOOTH
-// (the gradient at the sample, trilinear between the voxels', as
+// plugins/raycast/label_tree.hpp does, and a step in such a cell is taken
+// as four samples; else the nearest voxel's label), SMOOTH (the gradient
+// at the sample, trilinear between the voxels', as
 // plugins/raycast/cell_sample.hpp; else the nearest voxel's), SHADED,
-// BOUNDARY, JITTER, OCCLUSION (ambient occlusion darkens the lit colour),
-// and VISIBILITY (instead of colour: what each of 32 labels from
-// u_visibility_base contributes, T * alpha, into 8 RGBA targets).
+// BOUNDARY, JITTER, OCCLUSION (local ambient occlusion darkens the lit
+// colour, plugins/raycast/local_occlusion.hpp), and VISIBILITY (instead of
+// colour: what each of 32 labels from u_visibility_base contributes,
+// T * alpha, into 8 RGBA targets).
 
 uniform sampler3D u_values;   // R32F, linear: voxel centre (i, j, k) at ((i, j, k) + 0.5) / dims
 uniform usampler3D u_labels;  // R16UI or R32UI: label << 1 | (the cell at this voxel has corners of other labels)
 uniform isampler3D u_normals; // RGBA8I: xyz unit gradient * 127 (0: flat), w gradient magnitude - 128
 uniform usampler3D u_blocks;  // R8UI per 8^3 block: 1 when every sample in it is transparent
 uniform sampler2D u_lut;      // RGBA32F, a row per label
+uniform sampler2D u_refined;  // the same for a quarter of the step (mixed cells' samples)
 uniform sampler2D u_ranges;   // RGBA32F, one row: per label (low, scale, last)
 uniform sampler2D u_factors;  // R32F: row 0 boundary factor per gradient byte, row 1 highlight per ndl * 256
-uniform sampler3D u_occlusion; // R8 at half resolution: how filled with opacity the space around is
+uniform sampler2D u_occlusion; // RGBA32F, a row per label: the lookup tables of an occlusion ray's step
+uniform vec3 u_occlusion_world[14]; // occlusion rays: unit directions in mm
+uniform vec3 u_occlusion_step[14];  // and one step along each in voxel coordinates
 uniform sampler2D u_tree;     // RGBA32F, one row: per label (parent, depth, saddle value)
 
 uniform ivec3 u_dims;
@@ -147,6 +152,46 @@ vec2 chord(vec3 o, vec3 d, vec3 lo, vec3 hi)
     return vec2(t0, t1);
 }
 
+#ifdef OCCLUSION
+// The visible share of the half-space around voxel position p on the side
+// of unit normal n, in [0.3, 1]: short rays along the directions on that
+// side, weighted by their cosine, their steps `jitter` of a step early
+// (LocalOcclusion::visibility).
+float occlusion_visibility(vec3 p, vec3 n, float jitter)
+{
+    vec3 last = vec3(max(u_dims - 2, ivec3(0))), high = vec3(u_dims - 1);
+    float sum = 0.0, weight = 0.0;
+    for (int d = 0; d < 14; ++d) {
+        float cosine = dot(u_occlusion_world[d], n);
+        if (cosine <= 0.0)
+            continue;
+        float transmittance = 1.0;
+        for (int s = 1; s <= 4; ++s) {
+            vec3 q = p + (float(s) - jitter) * u_occlusion_step[d];
+            if (any(lessThan(q, vec3(0.0))) || any(greaterThan(q, high)))
+                break; // beyond the field of view: nothing occludes
+            ivec3 c = ivec3(min(floor(q), last));
+            float value = texture(u_values, (q + 0.5) / vec3(u_dims)).r;
+#ifdef LABELLED
+            int label = int(texelFetch(u_labels, c, 0).r >> 1u);
+#else
+            int label = 0;
+#endif
+            vec4 range = texelFetch(u_ranges, ivec2(label, 0), 0);
+            float index = clamp((value - range.x) * range.y, 0.0, range.z);
+            float a = texelFetch(u_occlusion, ivec2(int(index + 0.5), label), 0).a;
+#ifdef BOUNDARY
+            a *= texelFetch(u_factors, ivec2(texelFetch(u_normals, c, 0).w + 128, 0), 0).r;
+#endif
+            transmittance *= 1.0 - a;
+        }
+        sum += cosine * transmittance;
+        weight += cosine;
+    }
+    return weight > 0.0 ? max(0.3, sum / weight) : 1.0;
+}
+#endif
+
 // The first position of the ray's lattice past the block holding cell c.
 float skip_block(vec3 o, vec3 d, float t, float offset, ivec3 c)
 {
@@ -159,6 +204,85 @@ float skip_block(vec3 o, vec3 d, float t, float offset, ivec3 c)
         exit = min(exit, (bound - o[a]) / d[a]);
     }
     return max(t + u_step, ceil((exit - offset) / u_step) * u_step + offset);
+}
+
+// What the ray has gathered (premultiplied), where it became half opaque
+// (-1: not yet), per label what its samples contributed (VISIBILITY), and
+// what its samples share.
+vec4 g_acc;
+float g_depth;
+#ifdef VISIBILITY
+float g_seen[32];
+#endif
+vec3 g_light;
+float g_fraction;
+ivec3 g_last, g_wide;
+
+// The sample at voxel position x composited into the ray at distance t:
+// classified by the step's tables (the refined step's when `refined`),
+// opacity 1 - (1 - a)^steps, shaded (RayCaster::integrate).
+void integrate(vec3 x, float t, float steps, bool refined)
+{
+    x = clamp(x, vec3(0.0), vec3(u_dims - 1));
+    ivec3 c = min(ivec3(x), g_last);
+    vec3 f = x - vec3(c);
+    float value = texture(u_values, (x + 0.5) / vec3(u_dims)).r;
+    ivec3 nearest = c + ivec3(greaterThanEqual(f, vec3(0.5))) * g_wide;
+#if defined(LABELLED) && defined(RESOLVE)
+    uint word = texelFetch(u_labels, c, 0).r;
+    int label = (word & 1u) != 0u ? resolved_label(c, g_wide, value) : int(word >> 1u);
+#elif defined(LABELLED)
+    int label = int(texelFetch(u_labels, nearest, 0).r >> 1u);
+#else
+    int label = 0;
+#endif
+    vec4 range = texelFetch(u_ranges, ivec2(label, 0), 0);
+    ivec2 entry = ivec2(int(clamp((value - range.x) * range.y, 0.0, range.z) + 0.5), label);
+    vec4 s = refined ? texelFetch(u_refined, entry, 0) : texelFetch(u_lut, entry, 0);
+    if (!(s.a > 0.0))
+        return;
+#if defined(SHADED) || defined(BOUNDARY)
+#ifdef SMOOTH
+    vec4 gradient = sample_gradient(c, g_wide, f);
+    vec3 n = gradient.xyz;
+    float magnitude = gradient.w;
+#else
+    ivec4 nv = texelFetch(u_normals, nearest, 0);
+    vec3 n = vec3(nv.xyz) / 127.0;
+    float magnitude = float(nv.w + 128);
+#endif
+#endif
+    float m = 1.0;
+#ifdef BOUNDARY
+    m = texelFetch(u_factors, ivec2(int(magnitude + 0.5), 0), 0).r;
+#endif
+    if (steps != 1.0) {
+        float a = s.a * m;
+        m *= a < 1.0 ? (1.0 - pow(1.0 - a, steps)) / a : 1.0;
+    }
+    s *= m;
+    float w = 1.0 - g_acc.a;
+#ifdef SHADED
+    if (n != vec3(0.0)) {
+        float facing = dot(n, g_light);
+        float ndl = min(1.0, abs(facing));
+        float spec = texelFetch(u_factors, ivec2(int(ndl * 256.0), 1), 0).r * s.a;
+        float lit = u_ambient + u_diffuse * ndl;
+#ifdef OCCLUSION
+        if (w * s.a >= 0.01) // the side of the surface the viewer sees
+            lit *= 1.0 - u_occlusion_strength * (1.0 - occlusion_visibility(x, facing >= 0.0 ? n : -n, g_fraction));
+#endif
+        s.rgb = s.rgb * lit + spec;
+    }
+#endif
+    g_acc += w * s;
+#ifdef VISIBILITY
+    int slot = label - u_visibility_base;
+    if (slot >= 0 && slot < 32)
+        g_seen[slot] += w * s.a;
+#endif
+    if (g_acc.a >= 0.5 && g_depth < 0.0)
+        g_depth = t;
 }
 
 void main()
@@ -191,100 +315,61 @@ void main()
     float offset = fraction * u_step;
     float t = ceil((t0 - offset) / u_step) * u_step + offset;
     float first = t;
-    ivec3 last = max(u_dims - 2, ivec3(0));
-    ivec3 wide = ivec3(greaterThan(u_dims, ivec3(1)));
-    vec3 light = -dir;
-    vec4 acc = vec4(0.0);
-    float depth = -1.0;
+    g_last = max(u_dims - 2, ivec3(0));
+    g_wide = ivec3(greaterThan(u_dims, ivec3(1)));
+    g_light = -dir;
+    g_fraction = fraction;
+    g_acc = vec4(0.0);
+    g_depth = -1.0;
 #ifdef VISIBILITY
-    float seen[32];
     for (int l = 0; l < 32; ++l)
-        seen[l] = 0.0;
+        g_seen[l] = 0.0;
 #endif
-    while (t <= t1 && acc.a < u_termination) {
+    while (t <= t1 && g_acc.a < u_termination) {
         vec3 x = o + t * d;
-        ivec3 c = min(ivec3(x), last);
+        ivec3 c = min(ivec3(x), g_last);
         if (texelFetch(u_blocks, c >> 3, 0).r != 0u) {
             t = skip_block(o, d, t, offset, c);
             continue;
         }
-        vec3 f = x - vec3(c);
-        float value = texture(u_values, (x + 0.5) / vec3(u_dims)).r;
-        ivec3 nearest = c + ivec3(greaterThanEqual(f, vec3(0.5))) * wide;
-#if defined(LABELLED) && defined(RESOLVE)
-        uint word = texelFetch(u_labels, c, 0).r;
-        int label = (word & 1u) != 0u ? resolved_label(c, wide, value) : int(word >> 1u);
-#elif defined(LABELLED)
-        int label = int(texelFetch(u_labels, nearest, 0).r >> 1u);
-#else
-        int label = 0;
-#endif
-        vec4 range = texelFetch(u_ranges, ivec2(label, 0), 0);
-        float index = clamp((value - range.x) * range.y, 0.0, range.z);
-        vec4 s = texelFetch(u_lut, ivec2(int(index + 0.5), label), 0);
-        if (s.a > 0.0) {
-#if defined(SHADED) || defined(BOUNDARY)
-#ifdef SMOOTH
-            vec4 gradient = sample_gradient(c, wide, f);
-            vec3 n = gradient.xyz;
-            float magnitude = gradient.w;
-#else
-            ivec4 nv = texelFetch(u_normals, nearest, 0);
-            vec3 n = vec3(nv.xyz) / 127.0;
-            float magnitude = float(nv.w + 128);
-#endif
-#endif
-            float m = 1.0;
-#ifdef BOUNDARY
-            m = texelFetch(u_factors, ivec2(int(magnitude + 0.5), 0), 0).r;
-#endif
-            float steps = 1.0;
-            if (enters_face && t == first)
-                steps += (t - t0) / u_step - 0.5;
-            if (leaves_face && t + u_step > t1)
-                steps += (t1 - t) / u_step - 0.5;
-            if (steps != 1.0) {
-                float a = s.a * m;
-                m *= a < 1.0 ? (1.0 - pow(1.0 - a, steps)) / a : 1.0;
+#ifdef RESOLVE
+        // A cell where structures meet: four samples across the step, so
+        // a structure thinner than a step is not missed between samples.
+        if ((texelFetch(u_labels, c, 0).r & 1u) != 0u) {
+            float sub = u_step / 4.0;
+            for (int m = 0; m < 4 && g_acc.a < u_termination; ++m) {
+                float ts = t + (float(m) - 1.5) * sub;
+                if (ts >= t0 && ts <= t1)
+                    integrate(o + ts * d, ts, 1.0, true);
             }
-            s *= m;
-#ifdef SHADED
-            if (n != vec3(0.0)) {
-                float ndl = min(1.0, abs(dot(n, light)));
-                float spec = texelFetch(u_factors, ivec2(int(ndl * 256.0), 1), 0).r * s.a;
-                float lit = u_ambient + u_diffuse * ndl;
-#ifdef OCCLUSION
-                lit *= 1.0 - u_occlusion_strength * texelFetch(u_occlusion, c >> 1, 0).r;
-#endif
-                s.rgb = s.rgb * lit + spec;
-            }
-#endif
-            float w = 1.0 - acc.a;
-            acc += w * s;
-#ifdef VISIBILITY
-            int slot = label - u_visibility_base;
-            if (slot >= 0 && slot < 32)
-                seen[slot] += w * s.a;
-#endif
-            if (acc.a >= 0.5 && depth < 0.0)
-                depth = t;
+            t += u_step;
+            continue;
         }
+#endif
+        // A sample stands for the step around it; at a face, for the part
+        // of it inside.
+        float steps = 1.0;
+        if (enters_face && t == first)
+            steps += (t - t0) / u_step - 0.5;
+        if (leaves_face && t + u_step > t1)
+            steps += (t1 - t) / u_step - 0.5;
+        integrate(x, t, steps, false);
         t += u_step;
     }
 #ifdef VISIBILITY
     // Outputs indexed by constants only (GLSL 3.30).
-    o_visibility[0] = vec4(seen[0], seen[1], seen[2], seen[3]);
-    o_visibility[1] = vec4(seen[4], seen[5], seen[6], seen[7]);
-    o_visibility[2] = vec4(seen[8], seen[9], seen[10], seen[11]);
-    o_visibility[3] = vec4(seen[12], seen[13], seen[14], seen[15]);
-    o_visibility[4] = vec4(seen[16], seen[17], seen[18], seen[19]);
-    o_visibility[5] = vec4(seen[20], seen[21], seen[22], seen[23]);
-    o_visibility[6] = vec4(seen[24], seen[25], seen[26], seen[27]);
-    o_visibility[7] = vec4(seen[28], seen[29], seen[30], seen[31]);
+    o_visibility[0] = vec4(g_seen[0], g_seen[1], g_seen[2], g_seen[3]);
+    o_visibility[1] = vec4(g_seen[4], g_seen[5], g_seen[6], g_seen[7]);
+    o_visibility[2] = vec4(g_seen[8], g_seen[9], g_seen[10], g_seen[11]);
+    o_visibility[3] = vec4(g_seen[12], g_seen[13], g_seen[14], g_seen[15]);
+    o_visibility[4] = vec4(g_seen[16], g_seen[17], g_seen[18], g_seen[19]);
+    o_visibility[5] = vec4(g_seen[20], g_seen[21], g_seen[22], g_seen[23]);
+    o_visibility[6] = vec4(g_seen[24], g_seen[25], g_seen[26], g_seen[27]);
+    o_visibility[7] = vec4(g_seen[28], g_seen[29], g_seen[30], g_seen[31]);
 #else
-    float rest = 1.0 - acc.a;
-    o_rgba = vec4(min(vec3(1.0), acc.rgb + rest * u_background.rgb * u_background.a),
-                  min(1.0, acc.a + rest * u_background.a));
-    o_depth = depth;
+    float rest = 1.0 - g_acc.a;
+    o_rgba = vec4(min(vec3(1.0), g_acc.rgb + rest * u_background.rgb * u_background.a),
+                  min(1.0, g_acc.a + rest * u_background.a));
+    o_depth = g_depth;
 #endif
 }

@@ -51,9 +51,13 @@ class DefaultImage(unittest.TestCase):
         self.assertGreater(r["framing"]["scale"], 1.2)
         self.assertAlmostEqual(content_fraction(SCRATCH / "phantom.png"), 0.85, delta=0.07)
         # Balance: the root and the kept structures within their bounds.
+        # Labels resolved per sample draw a structure at its isosurface's
+        # size, not its voxels' cubes: the phantom's smallest kept one (a
+        # 5 mm core at depth 4, fully opaque, its ancestors peeled) holds
+        # 0.96 % of a 160-pixel image, where its cubes held more.
         self.assertLessEqual(shares[0], 0.40)
         for b in r["branches"][1:]:
-            self.assertGreaterEqual(b["visibility"], 0.01, b)
+            self.assertGreaterEqual(b["visibility"], 0.008, b)
         by_place = lambda centre: [b for b in r["branches"] if near(b, centre, 10)]
         tumour, ventricle = by_place(TUMOUR), by_place(VENTRICLE)
         self.assertTrue(tumour and ventricle, "the tumour and the ventricle are kept")

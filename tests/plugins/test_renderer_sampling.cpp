@@ -9,7 +9,9 @@
 //   normals closer than with each voxel's normal;
 // - the faces of the field of view: a ray entering and leaving through
 //   them integrates exactly the chord inside, whatever its jitter, so a cut
-//   face does not speckle.
+//   face does not speckle;
+// - local ambient occlusion: the floor of a trench darkens, an open floor
+//   does not.
 #include "plugin_fixture.hpp"
 
 #include "host/rendering.hpp"
@@ -262,6 +264,44 @@ TEST(SampleFaces, ARayThroughTheFieldOfViewsFacesIntegratesExactlyItsChord)
     // lattice points its jitter puts in the chord: off by up to a sample
     // (0.08 * 0.16 of transmittance left, 0.013).
     EXPECT_LT(worst, 2e-3);
+}
+
+// An opaque floor (k >= 30) with a trench 6 voxels wide and 8 deep along
+// j, seen from above: the occlusion rays from the trench's floor meet its
+// walls (visibility at the floor of 0.3, the clamp), those from the open
+// floor meet nothing.
+TEST(SampleOcclusion, TheFloorOfATrenchDarkensAnOpenFloorDoesNot)
+{
+    constexpr int64_t n = 48;
+    Grid g{allocate(n, n, n), {}, {}, {}};
+    for (int64_t k = 0; k < n; ++k)
+        for (int64_t j = 0; j < n; ++j)
+            for (int64_t i = 0; i < n; ++i) {
+                const bool trench = i >= 21 && i <= 26 && k < 38;
+                g.volume.as<float>()[i + n * (j + n * k)] = k >= 30 && !trench ? 100.0f : 0.0f;
+            }
+    TransferFunctions tf(1, kLut, 1.0);
+    std::vector<float> lut(kLut * 4, 1.0f);
+    for (uint32_t i = 0; i < kLut; ++i)
+        lut[4 * i + 3] = i >= kLut / 2 ? 1.0f : 0.0f;
+    tf.assign(0, {0.0, 100.0}, lut.data());
+    float trench[2], open[2];
+    for (const bool occluded : {false, true}) {
+        Scene s;
+        s.set("shading", "true");
+        s.set("specular", "0");
+        s.set("ambient", "0.3");
+        s.set("diffuse", "0.7");
+        s.set("ambient-occlusion", occluded ? "1" : "0");
+        s.look_along_z(g.volume, 24.0); // 2 pixels a voxel; x = 23.5 at column 47
+        const RenderedImage im = s.render(g, tf, 96, 96);
+        trench[occluded] = pixel(im, 47, 48)[0];
+        open[occluded] = pixel(im, 48 + 31, 48)[0]; // x = 8
+    }
+    EXPECT_GT(trench[0], 0.95f);
+    EXPECT_GT(open[0], 0.95f);
+    EXPECT_LT(trench[1], 0.5f * trench[0]);
+    EXPECT_NEAR(open[1], open[0], 0.02f);
 }
 
 } // namespace
