@@ -52,16 +52,16 @@ class DefaultImage(unittest.TestCase):
         self.assertAlmostEqual(content_fraction(SCRATCH / "phantom.png"), 0.85, delta=0.07)
         # Balance: the root and the kept structures within their bounds.
         # Labels resolved per sample draw a structure at its isosurface's
-        # size, not its voxels' cubes: the phantom's smallest kept one (a
-        # 5 mm core at depth 4, fully opaque, its ancestors peeled) holds
-        # 0.96 % of a 160-pixel image, where its cubes held more.
+        # size, not its voxels' cubes: the phantom's smallest kept one, the
+        # tumour (a 5 mm core at depth 4, fully opaque, its ancestors
+        # peeled), holds 0.96 % of a 160-pixel image, its cubes held 1.5 %.
         self.assertLessEqual(shares[0], 0.40)
         for b in r["branches"][1:]:
             self.assertGreaterEqual(b["visibility"], 0.008, b)
         by_place = lambda centre: [b for b in r["branches"] if near(b, centre, 10)]
         tumour, ventricle = by_place(TUMOUR), by_place(VENTRICLE)
         self.assertTrue(tumour and ventricle, "the tumour and the ventricle are kept")
-        self.assertGreaterEqual(tumour[0]["visibility"], 0.01)
+        self.assertGreaterEqual(tumour[0]["visibility"], 0.008)  # the core above
         self.assertGreaterEqual(ventricle[0]["visibility"], 0.01)
         # Automatic shapes: the body a ramp, the skull (a dark shell) a hat,
         # the solid structures a box or a ramp, each saying why.
