@@ -1,7 +1,8 @@
 // voxel_grid.hpp - the volume as the ray caster samples it: values as floats
-// (any voxel type, any strides), labels per voxel, unit gradient directions
-// and gradient magnitudes per voxel for shading and boundary emphasis, and
-// the map between LPS millimetres and voxel indices.  Rebuilt only when the
+// (any voxel type, any strides), labels per voxel with the cells where
+// they differ and the labels' tree, unit gradient directions and gradient
+// magnitudes per voxel for shading and boundary emphasis, and the map
+// between LPS millimetres and voxel indices.  Rebuilt only when the
 // request's revisions or pointers change.
 #pragma once
 
@@ -73,10 +74,10 @@ private:
     UnsetVector<uint32_t> wide_;
 };
 
-// What a sample reads at its nearest voxel besides the label, in one word
-// (one cache line): the unit world gradient * 127, 0 where the field is flat
-// (shading), and the gradient magnitude, 255 at the field's 99.5th
-// percentile and above (boundary emphasis).
+// What a voxel holds for shading besides its label, in one word (one cache
+// line): the unit world gradient * 127, 0 where the field is flat, and the
+// gradient magnitude, 255 at the field's 99.5th percentile and above
+// (boundary emphasis).  A sample weighs its cell's eight (SampleGradient).
 struct Surface {
     int8_t normal[3];
     uint8_t gradient;

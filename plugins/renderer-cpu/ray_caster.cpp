@@ -329,20 +329,17 @@ private:
                                     {static_cast<double>(g.nx - 1), static_cast<double>(g.ny - 1),
                                      static_cast<double>(g.nz - 1)});
         const bool enters_face = t0 > 0 && std::fabs(t0 - v0) < 1e-9, leaves_face = std::fabs(t1 - v1) < 1e-9;
-        Along along;
+        Along along(g);
         along.visibility = visibility;
         along.offset_fraction = static_cast<float>(offset_fraction);
-        for (int a = 0; a < 3; ++a) {
+        for (int a = 0; a < 3; ++a)
             along.light[a] = static_cast<float>(-ray.direction[a]);
-            along.high[a] = static_cast<double>((a == 0 ? g.nx : a == 1 ? g.ny : g.nz) - 1);
-        }
         // Start on the global sample lattice, so images do not shimmer as the
         // box is clipped, shifted by a fixed per-pixel fraction of a step.
         const double offset = offset_fraction * step;
         double t = std::ceil((t0 - offset) / step) * step + offset;
         const double first = t;
-        const int64_t last_i = std::max<int64_t>(g.nx - 2, 0), last_j = std::max<int64_t>(g.ny - 2, 0),
-                      last_k = std::max<int64_t>(g.nz - 2, 0);
+        const int64_t last_i = along.last[0], last_j = along.last[1], last_k = along.last[2];
         const bool labelled = !g.label.empty();
         // Where structures meet, a structure thinner than a step (a thin
         // shell's region between its saddle's isosurfaces) would be missed
@@ -384,8 +381,14 @@ private:
                     const double ts = t + (m + 0.5 - 0.5 * kRefine) * sub;
                     if (ts < t0 || ts > t1)
                         continue;
-                    const double at[3] = {o[0] + ts * d[0], o[1] + ts * d[1], o[2] + ts * d[2]};
-                    integrate(pass, *pass.refined, at, 1.0f, ts, along);
+                    // Within half a step of a sample inside: clamped into the grid.
+                    double at[3] = {o[0] + ts * d[0], o[1] + ts * d[1], o[2] + ts * d[2]};
+                    int64_t c[3];
+                    for (int a = 0; a < 3; ++a) {
+                        at[a] = std::clamp(at[a], 0.0, along.high[a]);
+                        c[a] = std::min(static_cast<int64_t>(at[a]), along.last[a]);
+                    }
+                    integrate(pass, *pass.refined, c, at, 1.0f, ts, along);
                 }
             } else {
                 // A sample stands for the step around it; at a face, for
@@ -395,8 +398,9 @@ private:
                     steps += static_cast<float>((t - t0) / step) - 0.5f;
                 if (leaves_face && t + step > t1)
                     steps += static_cast<float>((t1 - t) / step) - 0.5f;
+                const int64_t c[3] = {i, j, k};
                 const double at[3] = {px, py, pz};
-                integrate(pass, table, at, steps, t, along);
+                integrate(pass, table, c, at, steps, t, along);
             }
             t += step;
         }
@@ -411,29 +415,31 @@ private:
 
     // What a ray has gathered so far, and what its samples share.
     struct Along {
+        explicit Along(const VoxelGrid &g)
+            : high{static_cast<double>(g.nx - 1), static_cast<double>(g.ny - 1), static_cast<double>(g.nz - 1)},
+              last{std::max<int64_t>(g.nx - 2, 0), std::max<int64_t>(g.ny - 2, 0), std::max<int64_t>(g.nz - 2, 0)},
+              corners(g.strides())
+        {
+        }
         float acc[4] = {0, 0, 0, 0}; // premultiplied colour and opacity
         float depth = std::numeric_limits<float>::infinity();
         double *visibility = nullptr; // per label, T * alpha
         float light[3] = {0, 0, 0};   // towards the camera
-        double high[3] = {0, 0, 0};   // the last voxel index along each axis
         float offset_fraction = 0;
+        const double high[3];    // the last voxel index along each axis
+        const int64_t last[3];   // the last cell's
+        const CellCorners corners;
     };
 
-    // The sample at voxel position `at` composited into the ray: its
-    // value, label and gradient from its cell, classified by `table`,
-    // opacity 1 - (1 - a)^steps, shaded, at distance t.
-    void integrate(const Pass &pass, const ClassTable &table, const double at[3], float steps, double t,
-                   Along &along) const
+    // The sample at voxel position `p` (in cell c) composited into the
+    // ray: its value, label and gradient from its cell, classified by
+    // `table`, opacity 1 - (1 - a)^steps, shaded, at distance t.
+    void integrate(const Pass &pass, const ClassTable &table, const int64_t c[3], const double p[3], float steps,
+                   double t, Along &along) const
     {
         const VoxelGrid &g = *pass.grid;
         const Shading &shading = *pass.shading;
-        double p[3];
-        int64_t c[3];
-        for (int a = 0; a < 3; ++a) {
-            p[a] = std::clamp(at[a], 0.0, along.high[a]);
-            c[a] = std::min(static_cast<int64_t>(p[a]), std::max<int64_t>(static_cast<int64_t>(along.high[a]) - 1, 0));
-        }
-        const CellCorners corners(g.strides());
+        const CellCorners &corners = along.corners;
         const std::size_t base = g.index(c[0], c[1], c[2]);
         const Cell cell(g, base, corners, static_cast<float>(p[0] - c[0]), static_cast<float>(p[1] - c[1]),
                         static_cast<float>(p[2] - c[2]));

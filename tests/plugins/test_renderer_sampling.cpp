@@ -174,6 +174,32 @@ TEST(SampleLabels, BoundariesLieAtTheSaddleValuesOfEveryKindAndDepth)
     }
 }
 
+// Two structures whose voxels meet, a basin (up to 15.5) and a peak (from
+// 15.8), have the root between them with no voxel of its own: samples of
+// values in (15.5, 15.8) resolve to it.  Empty-space skipping must know
+// that a block of the two can show the root, which alone is opaque here.
+TEST(SampleLabels, ASharedAncestorWithoutVoxelsIsNotSkipped)
+{
+    Grid g{allocate(32, 4, 4), {}, {-1, 0, 0}, {0.0, 15.5, 15.8}};
+    g.labels.resize(32 * 4 * 4);
+    for (std::size_t v = 0; v < g.labels.size(); ++v) {
+        g.volume.as<float>()[v] = static_cast<float>(v % 32);
+        g.labels[v] = v % 32 <= 15 ? 1u : 2u;
+    }
+    TransferFunctions tf(3, kLut, 1.0);
+    constant(tf, 0, {1, 0, 0}, 0.9f, 0, 31);
+    constant(tf, 1, {0, 0, 1}, 0.0f, 0, 31);
+    constant(tf, 2, {0, 1, 0}, 0.0f, 0, 31);
+    Scene s;
+    s.look_along_z(g.volume, 2.0);
+    const RenderedImage im = s.render(g, tf, 256, 32);
+    const auto at = [&](double x) { return pixel(im, 255 - static_cast<uint32_t>((x + 0.5) * 8), 16); };
+    EXPECT_GT(at(15.65)[3], 0.5f) << "the root between them";
+    EXPECT_GT(at(15.65)[0], 0.5f);
+    EXPECT_LT(at(15.2)[3], 0.01f);
+    EXPECT_LT(at(16.2)[3], 0.01f);
+}
+
 TEST(SampleLabels, WithoutTheLabelsTreeTheNearestVoxelDecides)
 {
     const Grid g = ramp();
