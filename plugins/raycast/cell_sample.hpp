@@ -1,40 +1,47 @@
 // cell_sample.hpp - what a sample reads from the cell of voxels it falls
 // in: the trilinear value of its eight corners, its label resolved by that
 // value when the corners' labels differ (LabelTree), and the gradient at
-// the sample, trilinear between the corners' gradients, for shading and
-// boundary emphasis.  The labels and gradients of the sample's position,
-// not of its nearest voxel: surfaces and boundaries between structures
-// come out smooth instead of as terraces and walls of voxel cubes.  The
-// GLSL ray caster computes the same (resources/shaders/raycast.frag).
+// the sample (trilinear between the corners' gradients, or on thick slices
+// the field's own), for shading and boundary emphasis.  The labels and
+// gradients of the sample's position, not of its nearest voxel: surfaces
+// and boundaries between structures come out smooth instead of as
+// terraces and walls of voxel cubes.  The GLSL ray caster computes the
+// same (resources/shaders/raycast.frag).
 #pragma once
 
 #include "voxel_grid.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
 namespace arbor::raycast {
 
-// Index offsets of a cell's corners from its lowest: (i, j, k), (i+1, j, k),
-// (i, j+1, k), (i+1, j+1, k), then the same at k+1 (0 along an axis of one
-// voxel).
-struct CellCorners {
-    int64_t at[8];
-    explicit CellCorners(const VoxelGrid::Strides &s)
-        : at{0, s.i, s.j, s.j + s.i, s.k, s.k + s.i, s.k + s.j, s.k + s.j + s.i}
-    {
-    }
-};
+// Index offset of corner m of a cell from its lowest voxel: bit 0 of m
+// along i, bit 1 along j, bit 2 along k (VoxelGrid::strides: 0 along an
+// axis of one voxel).
+inline int64_t corner_offset(const VoxelGrid::Strides &s, int m)
+{
+    return (m & 1 ? s.i : 0) + (m & 2 ? s.j : 0) + (m & 4 ? s.k : 0);
+}
 
 struct Cell {
-    float corner[8]; // the corners' values
+    float corner[8]; // the corners' values, corner m as corner_offset
     float fx, fy, fz; // the sample's place in the cell, [0, 1] each
 
-    Cell(const VoxelGrid &g, std::size_t base, const CellCorners &c, float x, float y, float z) : fx(x), fy(y), fz(z)
+    // The cell whose lowest voxel is `base`.
+    Cell(const VoxelGrid &g, std::size_t base, const VoxelGrid::Strides &s, float x, float y, float z)
+        : fx(x), fy(y), fz(z)
     {
         const float *v = g.value.data() + base;
-        for (int m = 0; m < 8; ++m)
-            corner[m] = v[c.at[m]];
+        corner[0] = v[0];
+        corner[1] = v[s.i];
+        corner[2] = v[s.j];
+        corner[3] = v[s.j + s.i];
+        corner[4] = v[s.k];
+        corner[5] = v[s.k + s.i];
+        corner[6] = v[s.k + s.j];
+        corner[7] = v[s.k + s.j + s.i];
     }
 
     float value() const
@@ -49,7 +56,8 @@ struct Cell {
 
     // A cell whose corners carry more than one label: the label of a
     // sample of `value` in it, from a lowest and a highest corner.
-    uint32_t resolved_label(const VoxelGrid &g, std::size_t base, const CellCorners &c, float value) const
+    [[gnu::noinline]] uint32_t resolved_label(const VoxelGrid &g, std::size_t base, const VoxelGrid::Strides &s,
+                                              float value) const
     {
         int low = 0, high = 0;
         for (int m = 1; m < 8; ++m) {
@@ -58,8 +66,8 @@ struct Cell {
             if (corner[m] > corner[high])
                 high = m;
         }
-        return g.tree.resolve(g.label[base + static_cast<std::size_t>(c.at[low])],
-                              g.label[base + static_cast<std::size_t>(c.at[high])], value);
+        return g.tree.resolve(g.label[base + static_cast<std::size_t>(corner_offset(s, low))],
+                              g.label[base + static_cast<std::size_t>(corner_offset(s, high))], value);
     }
 };
 
@@ -71,7 +79,7 @@ struct SampleGradient {
     float normal[3];
     float magnitude;
 
-    SampleGradient(const VoxelGrid &g, std::size_t base, const CellCorners &c, const Cell &cell)
+    SampleGradient(const VoxelGrid &g, std::size_t base, const VoxelGrid::Strides &c, const Cell &cell)
     {
         const float gx = cell.fx, gy = cell.fy, gz = cell.fz;
         const float hx = 1.0f - gx, hy = 1.0f - gy, hz = 1.0f - gz;
@@ -80,7 +88,7 @@ struct SampleGradient {
         const Surface *s = g.surface.data() + base;
         float x = 0, y = 0, z = 0, m = 0;
         for (int k = 0; k < 8; ++k) {
-            const Surface &q = s[c.at[k]];
+            const Surface &q = s[corner_offset(c, k)];
             m += w[k] * static_cast<float>(q.gradient);
             // The byte's magnitude, a quarter up: a gradient below the
             // byte's first step still has its direction.
@@ -95,6 +103,36 @@ struct SampleGradient {
         normal[1] = y * unit;
         normal[2] = z * unit;
         magnitude = m;
+    }
+};
+
+// The gradient of the trilinear field itself at the sample: the
+// derivative of what the sample reads, from its cell's eight values (no
+// further loads), taken to millimetres.  Along an axis of thick slices it
+// is the slope between the two slices around the sample, where a central
+// difference at the voxels would span two slice gaps and blur a thin
+// structure over both (VoxelGrid::thick_slices); on a grid of even
+// spacing it is facetted at the cells' faces, where SampleGradient is not.
+struct FieldGradient {
+    float normal[3];
+    float magnitude; // on Surface::gradient's 8-bit scale, [0, 255]
+
+    FieldGradient(const VoxelGrid &g, const float inverse[9], const Cell &cell)
+    {
+        const float *c = cell.corner;
+        const float x = cell.fx, y = cell.fy, z = cell.fz, hx = 1.0f - x, hy = 1.0f - y, hz = 1.0f - z;
+        const float di = hz * (hy * (c[1] - c[0]) + y * (c[3] - c[2])) + z * (hy * (c[5] - c[4]) + y * (c[7] - c[6]));
+        const float dj = hz * (hx * (c[2] - c[0]) + x * (c[3] - c[1])) + z * (hx * (c[6] - c[4]) + x * (c[7] - c[5]));
+        const float dk = hy * (hx * (c[4] - c[0]) + x * (c[5] - c[1])) + y * (hx * (c[6] - c[2]) + x * (c[7] - c[3]));
+        // Index-space derivatives to LPS by the inverse transpose.
+        const float w[3] = {inverse[0] * di + inverse[3] * dj + inverse[6] * dk,
+                            inverse[1] * di + inverse[4] * dj + inverse[7] * dk,
+                            inverse[2] * di + inverse[5] * dj + inverse[8] * dk};
+        const float length = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+        const float unit = length > g.flat_gradient ? 1.0f / length : 0.0f;
+        for (int a = 0; a < 3; ++a)
+            normal[a] = w[a] * unit;
+        magnitude = std::min(255.0f, length * g.gradient_scale);
     }
 };
 

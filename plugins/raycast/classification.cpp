@@ -18,6 +18,7 @@ void require_functions(const VoxelGrid &g, const arbor_tf_set &tf)
 void ClassTable::build(const arbor_tf_set &tf, double step_mm)
 {
     size_ = tf.lut_size;
+    step_ = step_mm;
     range_.resize(tf.branch_count);
     rgba_.resize(static_cast<std::size_t>(tf.branch_count) * size_ * 4);
     const double exponent = step_mm / tf.opacity_unit_distance;
@@ -102,13 +103,15 @@ void BoundaryEmphasis::build(const ClassTable &table, double strength)
         factor_[q] = static_cast<float>(1.0 - strength + strength * std::min(1.0, static_cast<double>(q) / reference));
 }
 
-void Occupancy::build(const BlockStatistics &blocks, const ClassTable &table, const std::array<int64_t, 3> &dims)
+void Occupancy::build(const BlockStatistics &blocks, const ClassTable &table, const std::array<int64_t, 3> &dims,
+                      double min_spacing)
 {
     bx_ = blocks.bx();
     by_ = blocks.by();
     bz_ = blocks.bz();
     empty_.assign(blocks.count(), 0);
-    constexpr float kTransparent = 1.0f / 1024.0f;
+    const float transparent =
+        static_cast<float>(1.0 - std::pow(1.0 - 1.0 / 1024.0, table.step() / (0.5 * min_spacing)));
     int64_t lo_block[3] = {bx_, by_, bz_}, hi_block[3] = {-1, -1, -1};
     for (int64_t bk = 0; bk < bz_; ++bk)
         for (int64_t bj = 0; bj < by_; ++bj)
@@ -118,7 +121,7 @@ void Occupancy::build(const BlockStatistics &blocks, const ClassTable &table, co
                 const uint32_t *labels = blocks.labels(b);
                 for (uint32_t n = 0; empty && n < blocks.label_count(b); ++n)
                     empty = labels[n] >= table.labels() ||
-                            table.max_alpha(labels[n], blocks.low(b), blocks.high(b)) < kTransparent;
+                            table.max_alpha(labels[n], blocks.low(b), blocks.high(b)) < transparent;
                 empty_[b] = empty ? 1 : 0;
                 if (!empty) {
                     const int64_t at[3] = {bi, bj, bk};

@@ -41,11 +41,13 @@ public:
         float low, scale, last;
     };
     uint32_t entries() const { return size_; }
+    double step() const { return step_; } // mm between the samples it is for
     const std::vector<float> &rgba() const { return rgba_; }
     const Range &range(uint32_t label) const { return range_[label]; }
 
 private:
     uint32_t size_ = 0, levels_ = 0;
+    double step_ = 1.0;
     std::vector<Range> range_;
     std::vector<float> rgba_;
     std::vector<float> max_alpha_; // per label and level: a sparse table of opacity maxima
@@ -83,8 +85,12 @@ private:
 class Occupancy {
 public:
     static constexpr int64_t kBlock = BlockStatistics::kBlock; // the ray caster divides by it with >> 3
-    // O(blocks): from the value range and labels of each block.
-    void build(const BlockStatistics &blocks, const ClassTable &table, const std::array<int64_t, 3> &dims);
+    // O(blocks): from the value range and labels of each block.  A block
+    // counts as transparent when its opacity stays under 1/1024 per half
+    // voxel (of `min_spacing`), whatever the table's step: a finer step
+    // must not skip more of a faint structure.
+    void build(const BlockStatistics &blocks, const ClassTable &table, const std::array<int64_t, 3> &dims,
+               double min_spacing);
     // True when every sample within block (bi, bj, bk) is transparent.
     bool empty(int64_t bi, int64_t bj, int64_t bk) const { return empty_[static_cast<std::size_t>(bi + bx_ * (bj + by_ * bk))]; }
     // Blocks along each axis and the flags, i fastest (1: empty).

@@ -27,7 +27,7 @@ void LocalOcclusion::build(const VoxelGrid &g, const arbor_tf_set &tf)
 float LocalOcclusion::visibility(const VoxelGrid &g, const BoundaryEmphasis &boundaries, const double p[3],
                                  const float n[3], float jitter) const
 {
-    const CellCorners corners(g.strides());
+    const VoxelGrid::Strides corners = g.strides();
     const float last[3] = {static_cast<float>(std::max<int64_t>(g.nx - 2, 0)),
                            static_cast<float>(std::max<int64_t>(g.ny - 2, 0)),
                            static_cast<float>(std::max<int64_t>(g.nz - 2, 0))};

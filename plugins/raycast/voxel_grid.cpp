@@ -147,6 +147,8 @@ void compute_normals(VoxelGrid &g, const sdk::Task &task)
     const auto at = sample.begin() + static_cast<std::ptrdiff_t>(0.995 * (sample.size() - 1));
     std::nth_element(sample.begin(), at, sample.end());
     const float scale = 255.0f / (*at > 0 ? *at : 1.0f);
+    g.gradient_scale = scale;
+    g.flat_gradient = flat;
 
     g.surface.resize(voxels);
     float m[9];
@@ -261,6 +263,7 @@ const VoxelGrid &VoxelGridCache::update(const arbor_volume &v, uint64_t volume_r
         g.to_voxel = inverse(g.to_world);
         g.origin = {v.origin[0], v.origin[1], v.origin[2]};
         g.min_spacing = std::min({v.spacing[0], v.spacing[1], v.spacing[2]});
+        g.thick_slices = std::max({v.spacing[0], v.spacing[1], v.spacing[2]}) >= 2.0 * g.min_spacing;
         compute_normals(g, task);
         voxels_ = v.voxels;
         volume_revision_ = volume_revision;

@@ -95,6 +95,13 @@ struct VoxelGrid {
     Mat3 to_world{};             // voxel index offsets -> LPS mm (direction * spacing)
     Mat3 to_voxel{};             // its inverse
     double min_spacing = 1.0;
+    // Gradient magnitude (per mm) -> the 8-bit scale of Surface::gradient,
+    // and the magnitude below which the field counts as flat.
+    float gradient_scale = 1.0f, flat_gradient = 0.0f;
+    // Slices at least twice as far apart as the finest spacing: a central
+    // difference at the voxels would span two slice gaps, so a sample's
+    // gradient is the trilinear field's own (FieldGradient).
+    bool thick_slices = false;
 
     std::size_t index(int64_t i, int64_t j, int64_t k) const { return static_cast<std::size_t>(i + nx * (j + ny * k)); }
     // Index offsets from a voxel to the next along i, j and k: a cell's

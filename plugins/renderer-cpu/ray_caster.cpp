@@ -220,7 +220,7 @@ private:
             coarse_refined_table_.build(tf, step * kCoarseStep / kRefine);
             // Which blocks are empty does not depend on the step: one grid
             // of flags serves both passes.
-            occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz});
+            occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz}, g.min_spacing);
             boundaries_.build(table_, emphasis);
             occlusion_.build(g, tf);
             table_print_ = print;
@@ -329,7 +329,7 @@ private:
                                     {static_cast<double>(g.nx - 1), static_cast<double>(g.ny - 1),
                                      static_cast<double>(g.nz - 1)});
         const bool enters_face = t0 > 0 && std::fabs(t0 - v0) < 1e-9, leaves_face = std::fabs(t1 - v1) < 1e-9;
-        Along along(g);
+        Along along(g, pass, pass.shading->enabled || boundaries_.active());
         along.visibility = visibility;
         along.offset_fraction = static_cast<float>(offset_fraction);
         for (int a = 0; a < 3; ++a)
@@ -340,12 +340,12 @@ private:
         double t = std::ceil((t0 - offset) / step) * step + offset;
         const double first = t;
         const int64_t last_i = along.last[0], last_j = along.last[1], last_k = along.last[2];
-        const bool labelled = !g.label.empty();
+        const bool labelled = along.labelled;
         // Where structures meet, a structure thinner than a step (a thin
         // shell's region between its saddle's isosurfaces) would be missed
         // between samples, or caught by one sample in a few (speckle): a
         // sample in a mixed cell is taken as kRefine samples across its step.
-        const bool refine = labelled && pass.sample_labels && !g.tree.empty();
+        const bool refine = along.resolve;
         const bool prefetch = g.nx * g.ny * g.nz >= kPrefetchFrom;
         const VoxelGrid::Strides cell_strides = g.strides();
         const int64_t dj = cell_strides.j, dk = cell_strides.k;
@@ -360,7 +360,7 @@ private:
             }
             if (prefetch) {
                 // The cell kAhead samples on (clamped into the grid): its
-                // values' and surface words' four rows, and its label word.
+                // values' four rows, and its label word.
                 const double ahead = t + kAhead * step;
                 const int64_t ai = std::clamp(static_cast<int64_t>(o[0] + ahead * d[0]), int64_t{0}, last_i);
                 const int64_t aj = std::clamp(static_cast<int64_t>(o[1] + ahead * d[1]), int64_t{0}, last_j);
@@ -368,28 +368,17 @@ private:
                 const std::size_t cell = g.index(ai, aj, ak);
                 const float *value = g.value.data() + cell;
                 const Surface *surface = g.surface.data() + cell;
-                for (const int64_t row : {int64_t{0}, dj, dk, dk + dj}) {
+                for (const int64_t row : {int64_t{0}, dj, dk, dk + dj})
                     __builtin_prefetch(value + row);
-                    __builtin_prefetch(surface + row);
-                }
+                // Surface words only where a sample shows: two rows of four
+                // (all four cost more on the many that do not).
+                __builtin_prefetch(surface);
+                __builtin_prefetch(surface + dk + dj);
                 if (labelled)
                     g.label.prefetch(cell);
             }
             if (refine && (g.label.word(g.index(i, j, k)) & 1u)) {
-                const double sub = step / kRefine;
-                for (int m = 0; m < kRefine && along.acc[3] < termination; ++m) {
-                    const double ts = t + (m + 0.5 - 0.5 * kRefine) * sub;
-                    if (ts < t0 || ts > t1)
-                        continue;
-                    // Within half a step of a sample inside: clamped into the grid.
-                    double at[3] = {o[0] + ts * d[0], o[1] + ts * d[1], o[2] + ts * d[2]};
-                    int64_t c[3];
-                    for (int a = 0; a < 3; ++a) {
-                        at[a] = std::clamp(at[a], 0.0, along.high[a]);
-                        c[a] = std::min(static_cast<int64_t>(at[a]), along.last[a]);
-                    }
-                    integrate(pass, *pass.refined, c, at, 1.0f, ts, along);
-                }
+                integrate_refined(pass, o, d, t, t0, t1, along);
             } else {
                 // A sample stands for the step around it; at a face, for
                 // the part of it inside.
@@ -398,9 +387,8 @@ private:
                     steps += static_cast<float>((t - t0) / step) - 0.5f;
                 if (leaves_face && t + step > t1)
                     steps += static_cast<float>((t1 - t) / step) - 0.5f;
-                const int64_t c[3] = {i, j, k};
-                const double at[3] = {px, py, pz};
-                integrate(pass, table, c, at, steps, t, along);
+                integrate(pass, table, i, j, k, static_cast<float>(px - i), static_cast<float>(py - j),
+                          static_cast<float>(pz - k), steps, t, along);
             }
             t += step;
         }
@@ -415,12 +403,17 @@ private:
 
     // What a ray has gathered so far, and what its samples share.
     struct Along {
-        explicit Along(const VoxelGrid &g)
+        Along(const VoxelGrid &g, const Pass &pass, bool surfaces)
             : high{static_cast<double>(g.nx - 1), static_cast<double>(g.ny - 1), static_cast<double>(g.nz - 1)},
               last{std::max<int64_t>(g.nx - 2, 0), std::max<int64_t>(g.ny - 2, 0), std::max<int64_t>(g.nz - 2, 0)},
-              corners(g.strides())
+              strides(g.strides()), labelled(!g.label.empty()),
+              resolve(labelled && pass.sample_labels && !g.tree.empty()), surfaces(surfaces),
+              smooth(surfaces && pass.sample_gradients)
         {
+            for (int c = 0; c < 9; ++c)
+                inverse[c] = static_cast<float>(g.to_voxel[c]);
         }
+        float inverse[9];         // rows of M^-1 = columns of M^-T
         float acc[4] = {0, 0, 0, 0}; // premultiplied colour and opacity
         float depth = std::numeric_limits<float>::infinity();
         double *visibility = nullptr; // per label, T * alpha
@@ -428,44 +421,71 @@ private:
         float offset_fraction = 0;
         const double high[3];    // the last voxel index along each axis
         const int64_t last[3];   // the last cell's
-        const CellCorners corners;
+        const VoxelGrid::Strides strides;
+        const bool labelled, resolve; // labels; resolved per sample
+        const bool surfaces, smooth;  // gradients needed; at the sample
     };
 
-    // The sample at voxel position `p` (in cell c) composited into the
-    // ray: its value, label and gradient from its cell, classified by
-    // `table`, opacity 1 - (1 - a)^steps, shaded, at distance t.
-    void integrate(const Pass &pass, const ClassTable &table, const int64_t c[3], const double p[3], float steps,
-                   double t, Along &along) const
+    // The step around t in a cell where structures meet, as kRefine
+    // samples.
+    [[gnu::always_inline]] void integrate_refined(const Pass &pass, const Vec3 &o, const Vec3 &d, double t, double t0,
+                                             double t1, Along &along) const
+    {
+        const double sub = pass.step / kRefine;
+        for (int m = 0; m < kRefine && along.acc[3] < pass.termination; ++m) {
+            const double ts = t + (m + 0.5 - 0.5 * kRefine) * sub;
+            if (ts < t0 || ts > t1)
+                continue;
+            // Within half a step of a sample inside: clamped into the grid.
+            double at[3] = {o[0] + ts * d[0], o[1] + ts * d[1], o[2] + ts * d[2]};
+            int64_t c[3];
+            for (int a = 0; a < 3; ++a) {
+                at[a] = std::clamp(at[a], 0.0, along.high[a]);
+                c[a] = std::min(static_cast<int64_t>(at[a]), along.last[a]);
+            }
+            integrate(pass, *pass.refined, c[0], c[1], c[2], static_cast<float>(at[0] - c[0]),
+                      static_cast<float>(at[1] - c[1]), static_cast<float>(at[2] - c[2]), 1.0f, ts, along);
+        }
+    }
+
+    // The sample at voxel position c + f (c its cell's lowest voxel, f in
+    // [0, 1]^3) composited into the ray: its value, label and gradient
+    // from its cell, classified by `table`, opacity 1 - (1 - a)^steps,
+    // shaded, at distance t.
+    [[gnu::always_inline]] void integrate(const Pass &pass, const ClassTable &table, int64_t ci, int64_t cj,
+                                          int64_t ck, float fx, float fy, float fz, float steps, double t,
+                                          Along &along) const
     {
         const VoxelGrid &g = *pass.grid;
         const Shading &shading = *pass.shading;
-        const CellCorners &corners = along.corners;
-        const std::size_t base = g.index(c[0], c[1], c[2]);
-        const Cell cell(g, base, corners, static_cast<float>(p[0] - c[0]), static_cast<float>(p[1] - c[1]),
-                        static_cast<float>(p[2] - c[2]));
+        const VoxelGrid::Strides s = along.strides;
+        const std::size_t base = g.index(ci, cj, ck);
+        const Cell cell(g, base, s, fx, fy, fz);
         const float value = cell.value();
         // With labels or gradients per sample off: the nearest voxel's.
-        const auto nearest = [&] {
-            return g.index(c[0] + (cell.fx >= 0.5f && g.nx > 1), c[1] + (cell.fy >= 0.5f && g.ny > 1),
-                           c[2] + (cell.fz >= 0.5f && g.nz > 1));
-        };
+        const std::size_t nearest =
+            base + static_cast<std::size_t>((fx >= 0.5f ? s.i : 0) + (fy >= 0.5f ? s.j : 0) + (fz >= 0.5f ? s.k : 0));
         uint32_t label = 0;
-        if (!g.label.empty() && pass.sample_labels && !g.tree.empty()) {
+        if (along.resolve) {
             const uint32_t word = g.label.word(base);
-            label = word & 1u ? cell.resolved_label(g, base, corners, value) : word >> 1;
-        } else if (!g.label.empty()) {
-            label = g.label[nearest()];
+            label = word & 1u ? cell.resolved_label(g, base, s, value) : word >> 1;
+        } else if (along.labelled) {
+            label = g.label[nearest];
         }
         const float *colour = table.lookup(label, value);
         if (!(colour[3] > 0.0f))
             return;
         float n[3] = {0, 0, 0}, gradient = 0; // unless shaded or emphasised
-        if ((shading.enabled || boundaries_.active()) && pass.sample_gradients) {
-            const SampleGradient at_sample(g, base, corners, cell);
+        if (along.smooth && g.thick_slices) {
+            const FieldGradient at_sample(g, along.inverse, cell);
             n[0] = at_sample.normal[0], n[1] = at_sample.normal[1], n[2] = at_sample.normal[2];
             gradient = at_sample.magnitude;
-        } else if (shading.enabled || boundaries_.active()) {
-            const Surface &surface = g.surface[nearest()];
+        } else if (along.smooth) {
+            const SampleGradient at_sample(g, base, s, cell);
+            n[0] = at_sample.normal[0], n[1] = at_sample.normal[1], n[2] = at_sample.normal[2];
+            gradient = at_sample.magnitude;
+        } else if (along.surfaces) {
+            const Surface &surface = g.surface[nearest];
             n[0] = surface.normal[0] / 127.0f, n[1] = surface.normal[1] / 127.0f, n[2] = surface.normal[2] / 127.0f;
             gradient = surface.gradient;
         }
@@ -487,6 +507,8 @@ private:
                 // The side of the surface the viewer sees.
                 const float sign = facing >= 0.0f ? 1.0f : -1.0f;
                 const float side[3] = {sign * n[0], sign * n[1], sign * n[2]};
+                const double p[3] = {static_cast<double>(ci) + fx, static_cast<double>(cj) + fy,
+                                     static_cast<double>(ck) + fz};
                 lit *= 1.0f -
                        pass.occlusion * (1.0f - occlusion_.visibility(g, boundaries_, p, side, along.offset_fraction));
             }

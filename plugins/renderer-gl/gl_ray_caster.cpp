@@ -238,7 +238,7 @@ private:
             coarse_table_.build(tf, step * raycast::kCoarseStep);
             refined_table_.build(tf, step / raycast::kRefine);
             coarse_refined_table_.build(tf, step * raycast::kCoarseStep / raycast::kRefine);
-            occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz});
+            occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz}, g.min_spacing);
             boundaries_.build(table_, emphasis);
             occlusion_.build(g, tf);
             ++tables_generation_;
@@ -288,7 +288,7 @@ private:
         if (s.textures.resolvable() && params().flag("sample-labels"))
             variant |= kResolve;
         if (params().flag("sample-gradients"))
-            variant |= kSmooth;
+            variant |= kSmooth | (g.thick_slices ? kField : 0u);
         if (shading.enabled)
             variant |= kShaded;
         if (boundaries_.active())
@@ -417,6 +417,8 @@ private:
         glUniform1i(at("u_occlusion"), unit::occlusion);
         glUniform1i(at("u_tree"), unit::tree);
         glUniform1i(at("u_refined"), unit::refined);
+        glUniform1f(at("u_gradient_scale"), g.gradient_scale);
+        glUniform1f(at("u_flat_gradient"), g.flat_gradient);
         glUniform1f(at("u_occlusion_strength"), occlusion_strength_);
         glUniform3fv(at("u_occlusion_world"), raycast::LocalOcclusion::kDirections, occlusion_.world()[0].data());
         glUniform3fv(at("u_occlusion_step"), raycast::LocalOcclusion::kDirections, occlusion_.steps()[0].data());

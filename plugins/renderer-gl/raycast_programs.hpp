@@ -1,6 +1,6 @@
 // raycast_programs.hpp - the ray casting shader (resources/shaders,
 // embedded at build time) compiled once per variant: which of LABELLED,
-// RESOLVE, SMOOTH, SHADED, BOUNDARY, JITTER, VISIBILITY and OCCLUSION it is
+// RESOLVE, SMOOTH, FIELD, SHADED, BOUNDARY, JITTER, VISIBILITY and OCCLUSION it is
 // built with;
 // and the present program (arbor.renderer-gl/1).
 #pragma once
@@ -21,6 +21,7 @@ enum Variant : unsigned {
     kOcclusion = 1u << 5,
     kResolve = 1u << 6, // labels per sample
     kSmooth = 1u << 7,  // gradients per sample
+    kField = 1u << 8,   // on thick slices: the field's own gradient
 };
 
 class RaycastPrograms {

@@ -15,7 +15,8 @@
 // plugins/raycast/label_tree.hpp does, and a step in such a cell is taken
 // as four samples; else the nearest voxel's label), SMOOTH (the gradient
 // at the sample, trilinear between the voxels', as
-// plugins/raycast/cell_sample.hpp; else the nearest voxel's), SHADED,
+// plugins/raycast/cell_sample.hpp, or with FIELD on thick slices the
+// trilinear field's own; else the nearest voxel's), SHADED,
 // BOUNDARY, JITTER, OCCLUSION (local ambient occlusion darkens the lit
 // colour, plugins/raycast/local_occlusion.hpp), and VISIBILITY (instead of
 // colour: what each of 32 labels from u_visibility_base contributes,
@@ -192,6 +193,28 @@ float occlusion_visibility(vec3 p, vec3 n, float jitter)
 }
 #endif
 
+#ifdef FIELD
+uniform float u_gradient_scale, u_flat_gradient; // per mm -> the 8-bit scale; flat below
+
+// The trilinear field's own gradient at the sample, on thick slices
+// (FieldGradient): xyz its unit direction in mm (0 where flat), w its
+// magnitude on the 8-bit scale.
+vec4 field_gradient(ivec3 c, ivec3 wide, vec3 f)
+{
+    float v[8];
+    for (int m = 0; m < 8; ++m)
+        v[m] = texelFetch(u_values, corner(c, m, wide), 0).r;
+    vec3 h = vec3(1.0) - f;
+    float di = h.z * (h.y * (v[1] - v[0]) + f.y * (v[3] - v[2])) + f.z * (h.y * (v[5] - v[4]) + f.y * (v[7] - v[6]));
+    float dj = h.z * (h.x * (v[2] - v[0]) + f.x * (v[3] - v[1])) + f.z * (h.x * (v[6] - v[4]) + f.x * (v[7] - v[5]));
+    float dk = h.y * (h.x * (v[4] - v[0]) + f.x * (v[5] - v[1])) + f.y * (h.x * (v[6] - v[2]) + f.x * (v[7] - v[3]));
+    // Index-space derivatives to LPS by the inverse transpose.
+    vec3 w = transpose(u_to_voxel) * vec3(di, dj, dk);
+    float len = length(w);
+    return vec4(len > u_flat_gradient ? w / len : vec3(0.0), min(255.0, len * u_gradient_scale));
+}
+#endif
+
 // The first position of the ray's lattice past the block holding cell c.
 float skip_block(vec3 o, vec3 d, float t, float offset, ivec3 c)
 {
@@ -242,7 +265,11 @@ void integrate(vec3 x, float t, float steps, bool refined)
     if (!(s.a > 0.0))
         return;
 #if defined(SHADED) || defined(BOUNDARY)
-#ifdef SMOOTH
+#if defined(SMOOTH) && defined(FIELD)
+    vec4 gradient = field_gradient(c, g_wide, f);
+    vec3 n = gradient.xyz;
+    float magnitude = gradient.w;
+#elif defined(SMOOTH)
     vec4 gradient = sample_gradient(c, g_wide, f);
     vec3 n = gradient.xyz;
     float magnitude = gradient.w;

@@ -18,11 +18,12 @@ constexpr int64_t kN = 64;
 constexpr uint32_t kLut = 256;
 constexpr const char *kGl = "org.arbor.renderer.gl-raycast", *kCpu = "org.arbor.renderer.cpu-raycast";
 
-inline Volume ball_in_shell()
+// Anisotropic, as scans are; {1, 1, 3}: thick slices.
+inline Volume ball_in_shell(const std::array<double, 3> &spacing = {1.0, 0.9, 1.3})
 {
     Geometry g;
     g.dims = {kN, kN, kN};
-    g.spacing = {1.0, 0.9, 1.3}; // anisotropic, as scans are
+    g.spacing = spacing;
     g.origin = {-20, 10, 5};
     Volume v = Volume::allocate(ARBOR_VOXEL_F32, g, {}, uint64_t{1} << 30);
     for (int64_t k = 0; k < kN; ++k)
@@ -50,7 +51,7 @@ inline void ramp_function(TransferFunctions &tf, uint32_t b, std::array<float, 3
 }
 
 struct Pair {
-    Volume volume = ball_in_shell();
+    Volume volume;
     std::vector<uint32_t> labels = std::vector<uint32_t>(kN * kN * kN, 0);
     // How the labels nest: samples in mixed cells resolve their labels.
     std::vector<int32_t> parent{-1, 0, 0};
@@ -64,7 +65,7 @@ struct Pair {
     arbor_render_request request{};
     uint64_t tf_revision = 1;
 
-    Pair()
+    explicit Pair(const std::array<double, 3> &spacing = {1.0, 0.9, 1.3}) : volume(ball_in_shell(spacing))
     {
         for (int64_t k = 0; k < kN; ++k)
             for (int64_t j = 0; j < kN; ++j)
@@ -78,7 +79,7 @@ struct Pair {
         camera.struct_size = sizeof camera;
         camera.projection = ARBOR_PROJECTION_PERSPECTIVE;
         camera.view_angle = 30;
-        const double c[3] = {-20 + 31.5, 10 + 0.9 * 31.5, 5 + 1.3 * 31.5};
+        const double c[3] = {-20 + spacing[0] * 31.5, 10 + spacing[1] * 31.5, 5 + spacing[2] * 31.5};
         camera.position[0] = c[0] + 70, camera.position[1] = c[1] - 100, camera.position[2] = c[2] + 50;
         for (int a = 0; a < 3; ++a)
             camera.focal_point[a] = c[a];
