@@ -428,7 +428,7 @@ private:
 
     // The step around t in a cell where structures meet, as kRefine
     // samples.
-    [[gnu::always_inline]] void integrate_refined(const Pass &pass, const Vec3 &o, const Vec3 &d, double t, double t0,
+    [[gnu::noinline]] void integrate_refined(const Pass &pass, const Vec3 &o, const Vec3 &d, double t, double t0,
                                              double t1, Along &along) const
     {
         const double sub = pass.step / kRefine;

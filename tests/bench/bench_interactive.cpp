@@ -22,13 +22,13 @@
 #include "global_ramp.hpp"
 #include "image_psnr.hpp"
 #include "plugin_fixture.hpp"
+#include "tall_ct.hpp"
 
 #include "core/volume_statistics.hpp"
 #include "host/param_text.hpp"
 #include "host/plugin_instance.hpp"
 #include "host/plugin_registry.hpp"
 #include "host/rendering.hpp"
-#include "io/nrrd_writer.hpp"
 #include "pipeline/pipeline.hpp"
 #include "pipeline/render_scene.hpp"
 
@@ -67,32 +67,6 @@ double median(std::vector<double> v)
 {
     std::sort(v.begin(), v.end());
     return v[v.size() / 2];
-}
-
-// The CT head with `factor` times as many slices, linear between them.
-fs::path resampled(const fs::path &dicom, int factor, const fs::path &out)
-{
-    if (fs::exists(out))
-        return out;
-    const Volume v = test::import(dicom);
-    Geometry g = v.geometry();
-    const int64_t nz = (g.dims[2] - 1) * factor + 1, plane = g.dims[0] * g.dims[1];
-    g.dims[2] = nz;
-    g.spacing[2] /= factor;
-    Volume r = Volume::allocate(v.type(), g, v.mapping(), uint64_t{1} << 32);
-    if (v.type() != ARBOR_VOXEL_U16)
-        throw std::runtime_error("the CT head is expected as u16");
-    const uint16_t *src = v.as<uint16_t>();
-    uint16_t *dst = r.as<uint16_t>();
-    for (int64_t k = 0; k < nz; ++k) {
-        const int64_t k0 = k / factor, k1 = std::min(k0 + 1, v.geometry().dims[2] - 1);
-        const double f = static_cast<double>(k % factor) / factor;
-        for (int64_t p = 0; p < plane; ++p)
-            dst[k * plane + p] = static_cast<uint16_t>(
-                std::lround((1 - f) * src[k0 * plane + p] + f * src[k1 * plane + p]));
-    }
-    io::write_nrrd(r, out);
-    return out;
 }
 
 struct Orbiting {
@@ -157,6 +131,39 @@ Orbiting orbit(PluginInstance &renderer, arbor_render_request r, const Geometry 
     return out;
 }
 
+// Pre-integration (Engel, Kraus and Ertl 2001) integrates each step's
+// segment of the transfer function as a finer step would.  So what the
+// coarse image gains when its step is the full pass's (coarse pass at a
+// fixed 3 x 3 pixels a ray, against the FULL image) bounds what
+// pre-integration at the coarse step could gain, and its time what it may
+// cost.
+struct StepBound {
+    double psnr_coarse_step = 0, psnr_full_step = 0, ms_coarse_step = 0, ms_full_step = 0;
+};
+
+StepBound coarse_step_bound(PluginRegistry &registry, const arbor_render_request &r, uint64_t revision)
+{
+    StepBound b;
+    PluginInstance full = registry.create("org.arbor.renderer.cpu-raycast");
+    const RenderedImage reference = render_image(full, r, kSize, kSize, nullptr, {}, {ARBOR_RENDER_PASS_FULL, 0, revision});
+    for (const bool finer : {false, true}) {
+        PluginInstance cpu = registry.create("org.arbor.renderer.cpu-raycast");
+        set(cpu, "coarse-pixels", "3");
+        if (finer) // its coarse step (twice the sample distance) is the default full step
+            set(cpu, "sample-distance", "0.25");
+        RenderedImage coarse = render_image(cpu, r, kSize, kSize, nullptr, {}, {ARBOR_RENDER_PASS_COARSE, 0, revision});
+        std::vector<double> ms;
+        for (int i = 0; i < 3; ++i) {
+            const auto t0 = Clock::now();
+            coarse = render_image(cpu, r, kSize, kSize, nullptr, {}, {ARBOR_RENDER_PASS_COARSE, 0, revision});
+            ms.push_back(ms_since(t0));
+        }
+        (finer ? b.psnr_full_step : b.psnr_coarse_step) = test::psnr(coarse, reference);
+        (finer ? b.ms_full_step : b.ms_coarse_step) = median(ms);
+    }
+    return b;
+}
+
 } // namespace
 
 int main()
@@ -171,7 +178,7 @@ int main()
     const fs::path head = test::shared_data("dicom_ct_head_0051");
     const fs::path scratch = fs::temp_directory_path() / "arbor-bench-interactive";
     fs::create_directories(scratch);
-    const fs::path tall = resampled(head, 3, scratch / "ct_head_x3.nrrd");
+    const fs::path tall = bench::tall_ct(head, 3, scratch / "ct_head_x3.nrrd");
 
     std::printf("arbor_bench_interactive: %ux%u, 2 cores here, CPU ray caster's arbor.renderer/2 passes; "
                 "VTK's vtkFixedPointVolumeRayCastMapper; both asked for %s frames/s in the comparison\n\n",
@@ -253,6 +260,11 @@ int main()
                     "global: Arbor coarse %.1f dB (full %.1f dB)\n",
                     "", "", kRefinements, coarse.psnr_refined, coarse.full_floor, arbor_global.psnr_refined,
                     arbor_global.full_floor);
+        const StepBound bound = coarse_step_bound(registry, r, revision);
+        std::printf("%-24s %6s   coarse at 3x3 pixels a ray: its own step %.1f dB (%.0f ms), the full pass's step "
+                    "%.1f dB (%.0f ms): pre-integration could gain at most %.1f dB\n",
+                    "", "", bound.psnr_coarse_step, bound.ms_coarse_step, bound.psnr_full_step, bound.ms_full_step,
+                    bound.psnr_full_step - bound.psnr_coarse_step);
         // The OpenGL ray caster on the same request: its first frame (the
         // uploads), the full pass, the coarse orbit, and how close its full
         // image is to the CPU ray caster's.
