@@ -427,7 +427,7 @@ private:
     };
 
     // The step around t in a cell where structures meet, as kRefine
-    // samples.
+    // samples (out of line: the rarer path).
     [[gnu::noinline]] void integrate_refined(const Pass &pass, const Vec3 &o, const Vec3 &d, double t, double t0,
                                              double t1, Along &along) const
     {
