@@ -344,8 +344,9 @@ private:
         // Where structures meet, a structure thinner than a step (a thin
         // shell's region between its saddle's isosurfaces) would be missed
         // between samples, or caught by one sample in a few (speckle): a
-        // sample in a mixed cell is taken as kRefine samples across its step.
-        const bool refine = along.resolve;
+        // sample in a mixed cell is taken as kRefine samples across its step;
+        // not in the coarse pass, a preview that must keep its frame rate.
+        const bool refine = along.resolve && !pass.coarse;
         const bool prefetch = g.nx * g.ny * g.nz >= kPrefetchFrom;
         const VoxelGrid::Strides cell_strides = g.strides();
         const int64_t dj = cell_strides.j, dk = cell_strides.k;

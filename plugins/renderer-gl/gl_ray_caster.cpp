@@ -286,7 +286,7 @@ private:
         if (s.textures.labelled())
             variant |= kLabelled;
         if (s.textures.resolvable() && params().flag("sample-labels"))
-            variant |= kResolve;
+            variant |= kResolve | (grid.coarse ? 0u : kRefined);
         if (params().flag("sample-gradients"))
             variant |= kSmooth | (g.thick_slices ? kField : 0u);
         if (shading.enabled)

@@ -1,8 +1,8 @@
 // raycast_programs.hpp - the ray casting shader (resources/shaders,
 // embedded at build time) compiled once per variant: which of LABELLED,
-// RESOLVE, SMOOTH, FIELD, SHADED, BOUNDARY, JITTER, VISIBILITY and OCCLUSION it is
-// built with;
-// and the present program (arbor.renderer-gl/1).
+// RESOLVE, REFINE, SMOOTH, FIELD, SHADED, BOUNDARY, JITTER, VISIBILITY and
+// OCCLUSION it is built with; and the present program
+// (arbor.renderer-gl/1).
 #pragma once
 
 #include "gl_objects.hpp"
@@ -22,6 +22,7 @@ enum Variant : unsigned {
     kResolve = 1u << 6, // labels per sample
     kSmooth = 1u << 7,  // gradients per sample
     kField = 1u << 8,   // on thick slices: the field's own gradient
+    kRefined = 1u << 9, // a step in a mixed cell as four samples (not coarse)
 };
 
 class RaycastPrograms {

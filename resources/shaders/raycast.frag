@@ -12,8 +12,9 @@
 // Variants are chosen when the program is built (llvmpipe runs both sides
 // of a uniform branch): LABELLED, RESOLVE (a sample in a cell of mixed
 // labels takes the label its value implies, walking the labels' tree as
-// plugins/raycast/label_tree.hpp does, and a step in such a cell is taken
-// as four samples; else the nearest voxel's label), SMOOTH (the gradient
+// plugins/raycast/label_tree.hpp does; with REFINE, outside the coarse
+// pass, a step in such a cell is taken as four samples; else the nearest
+// voxel's label), SMOOTH (the gradient
 // at the sample, trilinear between the voxels', as
 // plugins/raycast/cell_sample.hpp, or with FIELD on thick slices the
 // trilinear field's own; else the nearest voxel's), SHADED,
@@ -359,9 +360,10 @@ void main()
             t = skip_block(o, d, t, offset, c);
             continue;
         }
-#ifdef RESOLVE
+#ifdef REFINE
         // A cell where structures meet: four samples across the step, so
-        // a structure thinner than a step is not missed between samples.
+        // a structure thinner than a step is not missed between samples
+        // (not in the coarse pass).
         if ((texelFetch(u_labels, c, 0).r & 1u) != 0u) {
             float sub = u_step / 4.0;
             for (int m = 0; m < 4 && g_acc.a < u_termination; ++m) {
