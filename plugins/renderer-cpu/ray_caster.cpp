@@ -97,12 +97,16 @@ constexpr double kAhead = 6;
 // volume).
 constexpr int64_t kPrefetchFrom = int64_t{1} << 22;
 
-// Per worker of the arena: what its rays contributed to each label.
+// Per tile of rays: what its rays contributed to each label.  Summed in
+// tile order afterwards, so the sums (and the balance drawn from them) do
+// not depend on which thread cast which tile.
 using Slots = std::vector<std::vector<double>>;
-std::vector<double> &slot(Slots &slots)
+
+void add_in_order(const Slots &slots, double scale, std::vector<double> &sum)
 {
-    const int i = tbb::this_task_arena::current_thread_index();
-    return slots[static_cast<std::size_t>(i >= 0 ? i : 0) % slots.size()];
+    for (const std::vector<double> &v : slots)
+        for (std::size_t l = 0; l < v.size(); ++l)
+            sum[l] += scale * v[l];
 }
 
 class RayCaster final : public sdk::Renderer {
@@ -142,10 +146,7 @@ public:
             arena_ = std::make_unique<tbb::task_arena>(static_cast<int>(threads));
             arena_threads_ = threads;
         }
-        // Visibility per worker slot of the arena, allocated here: the pool's
-        // threads allocate nothing.
-        Slots visibility(static_cast<std::size_t>(arena_->max_concurrency()),
-                         std::vector<double>(table_.labels(), 0.0));
+        std::vector<double> visibility(table_.labels(), 0.0);
         Cancellation cancel(task);
         if (coarse)
             pass.pixels = coarse_rate_.pixels_for(request, params().number("coarse-rate"),
@@ -161,14 +162,9 @@ public:
         if (coarse)
             coarse_rate_.rendered(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(),
                                   static_cast<double>(out.width) * out.height);
-        if (ARBOR_HAS_FIELD(arbor_image, out.struct_size, label_visibility_count) && out.label_visibility) {
-            std::vector<double> sum(table_.labels(), 0.0);
-            for (const std::vector<double> &v : visibility)
-                for (std::size_t l = 0; l < v.size(); ++l)
-                    sum[l] += v[l];
+        if (ARBOR_HAS_FIELD(arbor_image, out.struct_size, label_visibility_count) && out.label_visibility)
             for (uint32_t l = 0; l < out.label_visibility_count; ++l)
-                out.label_visibility[l] = l < sum.size() ? sum[l] : 0.0;
-        }
+                out.label_visibility[l] = l < visibility.size() ? visibility[l] : 0.0;
     }
 
 private:
@@ -233,16 +229,18 @@ private:
     // FULL and SUPERSAMPLE: a ray per pixel, each pixel written once, when
     // its ray is done (so a cancelled call leaves old or final pixels).
     void render_pixels(const Pass &pass, const arbor_render_request_v2 &request, arbor_image &out,
-                       Cancellation &cancel, Slots &visibility) const
+                       Cancellation &cancel, std::vector<double> &visibility) const
     {
         const uint32_t tiles = (out.height + kRows - 1) / kRows;
+        // Allocated here: the pool's threads allocate nothing.
+        Slots per_tile(tiles, std::vector<double>(visibility.size(), 0.0));
         const int64_t depth_stride = depth_stride_of(out);
         std::atomic<uint32_t> done{0};
         const std::array<double, 2> offset = pass.sample_index ? subpixel(pass.sample_index) : std::array{0.5, 0.5};
         const float blend = pass.sample_index ? 1.0f / static_cast<float>(pass.sample_index + 1) : 1.0f;
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, tiles, 1), [&](const tbb::blocked_range<uint32_t> &r) {
-            std::vector<double> &mine = slot(visibility);
             for (uint32_t t = r.begin(); t != r.end(); ++t) {
+                std::vector<double> &mine = per_tile[t];
                 for (uint32_t y = t * kRows; y < std::min(out.height, (t + 1) * kRows); ++y) {
                     if (cancel.stopped())
                         return;
@@ -266,25 +264,26 @@ private:
                     cancel.progress(static_cast<double>(d) / tiles, "ray casting");
             }
         });
+        add_in_order(per_tile, 1.0, visibility);
     }
 
     // COARSE: a ray per n x n block of the frame, each pixel bilinear
     // between the four rays around it.  The rays are cast first; the pixels
     // are written only when all are done.
     void render_coarse(const Pass &pass, const arbor_render_request_v2 &request, arbor_image &out,
-                       Cancellation &cancel, Slots &visibility) const
+                       Cancellation &cancel, std::vector<double> &visibility) const
     {
         const CoarseLattice lattice(request, pass.pixels);
         const int64_t w = lattice.columns(), h = lattice.rows();
         std::vector<Sample> rays(static_cast<std::size_t>(w * h));
         // Each coarse ray stands for pixels^2 pixels of the frame; the
         // visibility is scaled to the region's pixels below.
-        Slots raw(visibility.size(), std::vector<double>(table_.labels(), 0.0));
+        Slots per_row(static_cast<std::size_t>(h), std::vector<double>(visibility.size(), 0.0));
         tbb::parallel_for(tbb::blocked_range<int64_t>(0, h, 2), [&](const tbb::blocked_range<int64_t> &r) {
-            std::vector<double> &mine = slot(raw);
             for (int64_t n = r.begin(); n != r.end(); ++n) {
                 if (cancel.stopped())
                     return;
+                std::vector<double> &mine = per_row[static_cast<std::size_t>(n)];
                 for (int64_t m = 0; m < w; ++m) {
                     const double px = lattice.x(m), py = lattice.y(n);
                     rays[static_cast<std::size_t>(n * w + m)] =
@@ -296,10 +295,7 @@ private:
         });
         if (cancel.stopped())
             return;
-        const double per_ray = static_cast<double>(out.width) * out.height / static_cast<double>(w * h);
-        for (const std::vector<double> &v : raw)
-            for (std::size_t l = 0; l < v.size(); ++l)
-                visibility[0][l] += per_ray * v[l];
+        add_in_order(per_row, static_cast<double>(out.width) * out.height / static_cast<double>(w * h), visibility);
         lattice.interpolate(rays, out);
     }
 
