@@ -218,10 +218,16 @@ private:
             // of flags serves both passes.
             occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz}, g.min_spacing);
             boundaries_.build(table_, emphasis);
-            occlusion_.build(g, tf);
+            occlusion_current_ = false;
             table_print_ = print;
             step_ = step;
             emphasis_ = emphasis;
+        }
+        // The occlusion rays' tables only when they are cast: not on every
+        // flow-rate step with the occlusion off.
+        if (params().number("ambient-occlusion") > 0 && !occlusion_current_) {
+            occlusion_.build(g, tf);
+            occlusion_current_ = true;
         }
         return g;
     }
@@ -568,6 +574,7 @@ private:
     Occupancy occupancy_;
     BoundaryEmphasis boundaries_;
     LocalOcclusion occlusion_;
+    bool occlusion_current_ = false; // built for the current tables
     uint64_t table_print_ = 0;
     double step_ = -1.0, emphasis_ = -1.0;
     CoarseRate coarse_rate_;

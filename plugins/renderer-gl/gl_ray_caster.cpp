@@ -240,7 +240,7 @@ private:
             coarse_refined_table_.build(tf, step * raycast::kCoarseStep / raycast::kRefine);
             occupancy_.build(blocks_, table_, {g.nx, g.ny, g.nz}, g.min_spacing);
             boundaries_.build(table_, emphasis);
-            occlusion_.build(g, tf);
+            occlusion_current_ = false;
             ++tables_generation_;
             tf_revision_ = print;
             step_ = step;
@@ -248,6 +248,13 @@ private:
             shading_ = shading;
         }
         occlusion_strength_ = static_cast<float>(params().number("ambient-occlusion"));
+        // The occlusion rays' tables only when they are cast: not on every
+        // flow-rate step with the occlusion off.
+        if (occlusion_strength_ > 0 && !occlusion_current_) {
+            occlusion_.build(g, tf);
+            occlusion_current_ = true;
+            ++tables_generation_;
+        }
         prepared_grid_ = grid_.generation();
         return g;
     }
@@ -528,6 +535,7 @@ private:
     raycast::BoundaryEmphasis boundaries_;
     raycast::LocalOcclusion occlusion_;
     float occlusion_strength_ = 0.0f;
+    bool occlusion_current_ = false; // occlusion_ built for the current tables
     raycast::Shading shading_;
     raycast::CoarseRate coarse_rate_;
     uint64_t prepared_grid_ = kNotUploaded; // the grid generation blocks_ and boundaries_ were built for

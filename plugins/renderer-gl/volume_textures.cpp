@@ -132,7 +132,10 @@ void VolumeTextures::upload_tables(const Tables &tables, const raycast::LocalOcc
     texture_2d(coarse_lut_, GL_RGBA32F, entries, labels, GL_RGBA, tables.coarse.rgba().data());
     texture_2d(refined_lut_, GL_RGBA32F, entries, labels, GL_RGBA, tables.full_refined.rgba().data());
     texture_2d(coarse_refined_lut_, GL_RGBA32F, entries, labels, GL_RGBA, tables.coarse_refined.rgba().data());
-    texture_2d(occlusion_lut_, GL_RGBA32F, entries, labels, GL_RGBA, occlusion.table().rgba().data());
+    // Unwritten when the occlusion is off (its tables are built only when on).
+    const std::vector<float> &occluding = occlusion.table().rgba();
+    texture_2d(occlusion_lut_, GL_RGBA32F, entries, labels, GL_RGBA,
+               occluding.size() == table.rgba().size() ? occluding.data() : nullptr);
     std::vector<float> ranges(4 * static_cast<std::size_t>(labels));
     for (GLsizei l = 0; l < labels; ++l) {
         const auto &r = table.range(static_cast<uint32_t>(l));

@@ -42,6 +42,15 @@ Volume allocate(int64_t nx, int64_t ny, int64_t nz)
     return Volume::allocate(ARBOR_VOXEL_F32, g, {}, uint64_t{1} << 30);
 }
 
+// White, transparent below `threshold` of [0, hi] and opaque from it.
+void opaque_from(TransferFunctions &tf, double threshold, double hi)
+{
+    std::vector<float> lut(kLut * 4, 1.0f);
+    for (uint32_t i = 0; i < kLut; ++i)
+        lut[4 * i + 3] = hi * i / (kLut - 1) >= threshold ? 1.0f : 0.0f;
+    tf.assign(0, {0.0, hi}, lut.data());
+}
+
 // Constant colour `rgb` at opacity `alpha` (per mm) over [lo, hi].
 void constant(TransferFunctions &tf, uint32_t b, std::array<float, 3> rgb, float alpha, double lo = 0, double hi = 100)
 {
@@ -71,6 +80,14 @@ struct Scene {
     void set(const std::string &param, const std::string &text)
     {
         renderer.set_param(param, parse_param_value(*renderer.find_param(param), text).value);
+    }
+    // Shaded by the headlight without highlights: ambient + diffuse * |n . l|.
+    void light(const char *ambient, const char *diffuse)
+    {
+        set("shading", "true");
+        set("specular", "0");
+        set("ambient", ambient);
+        set("diffuse", diffuse);
     }
     // Looking along +z at the centre of the grid's x-y extent, the image
     // spanning `half` mm above and below it.
@@ -231,17 +248,11 @@ TEST(SampleGradients, ShadingFollowsTheTrueNormalsOfABall)
                 g.volume.as<float>()[i + n * (j + n * k)] =
                     static_cast<float>(40.0 - std::sqrt((i - c) * (i - c) + (j - c) * (j - c) + (k - c) * (k - c)));
     TransferFunctions tf(1, kLut, 1.0);
-    std::vector<float> lut(kLut * 4, 1.0f);
-    for (uint32_t i = 0; i < kLut; ++i)
-        lut[4 * i + 3] = 40.0 * i / (kLut - 1) >= 28.0 ? 1.0f : 0.0f;
-    tf.assign(0, {0.0, 40.0}, lut.data());
+    opaque_from(tf, 28.0, 40.0);
     double error[2] = {0, 0};
     for (const bool per_sample : {true, false}) {
         Scene s;
-        s.set("shading", "true");
-        s.set("specular", "0");
-        s.set("ambient", "0.2");
-        s.set("diffuse", "0.8");
+        s.light("0.2", "0.8");
         s.set("sample-distance", "0.1");
         s.set("sample-gradients", per_sample ? "true" : "false");
         s.look_along_z(g.volume, 16.0);
@@ -307,17 +318,11 @@ TEST(SampleOcclusion, TheFloorOfATrenchDarkensAnOpenFloorDoesNot)
                 g.volume.as<float>()[i + n * (j + n * k)] = k >= 30 && !trench ? 100.0f : 0.0f;
             }
     TransferFunctions tf(1, kLut, 1.0);
-    std::vector<float> lut(kLut * 4, 1.0f);
-    for (uint32_t i = 0; i < kLut; ++i)
-        lut[4 * i + 3] = i >= kLut / 2 ? 1.0f : 0.0f;
-    tf.assign(0, {0.0, 100.0}, lut.data());
+    opaque_from(tf, 50.0, 100.0);
     float trench[2], open[2];
     for (const bool occluded : {false, true}) {
         Scene s;
-        s.set("shading", "true");
-        s.set("specular", "0");
-        s.set("ambient", "0.3");
-        s.set("diffuse", "0.7");
+        s.light("0.3", "0.7");
         s.set("ambient-occlusion", occluded ? "1" : "0");
         s.look_along_z(g.volume, 24.0); // 2 pixels a voxel; x = 23.5 at column 47
         const RenderedImage im = s.render(g, tf, 96, 96);
