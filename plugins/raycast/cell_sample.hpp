@@ -14,6 +14,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace arbor::raycast {
 
@@ -75,28 +80,91 @@ struct Cell {
 // magnitude) weighted trilinearly.  `magnitude` is the trilinear magnitude
 // on boundary emphasis' 8-bit scale, [0, 255]; `normal` the unit direction
 // of the summed gradient, all 0 where it vanishes (no direction to shade by).
+// With SSE2 the eight corners are weighed four at a time (a shaded frame
+// spent half its time here in scalar code: 32 conversions and 36 products a
+// sample); `scalar` computes the same one corner at a time.
 struct SampleGradient {
     float normal[3];
     float magnitude;
 
-    SampleGradient(const VoxelGrid &g, std::size_t base, const VoxelGrid::Strides &c, const Cell &cell)
+    [[gnu::always_inline]] SampleGradient(const VoxelGrid &g, std::size_t base, const VoxelGrid::Strides &c,
+                                          const Cell &cell)
+    {
+#if defined(__SSE2__)
+        weigh_sse2(g.surface.data() + base, c, cell);
+#else
+        weigh_scalar(g.surface.data() + base, c, cell);
+#endif
+    }
+
+    struct Scalar {};
+    SampleGradient(Scalar, const VoxelGrid &g, std::size_t base, const VoxelGrid::Strides &c, const Cell &cell)
+    {
+        weigh_scalar(g.surface.data() + base, c, cell);
+    }
+
+private:
+    // The byte's magnitude is taken a quarter up for the direction: a
+    // gradient below the byte's first step still has its direction.
+    static constexpr float kDirectionFloor = 0.25f;
+
+    void weigh_scalar(const Surface *s, const VoxelGrid::Strides &c, const Cell &cell)
     {
         const float gx = cell.fx, gy = cell.fy, gz = cell.fz;
         const float hx = 1.0f - gx, hy = 1.0f - gy, hz = 1.0f - gz;
         const float w[8] = {hx * hy * hz, gx * hy * hz, hx * gy * hz, gx * gy * hz,
                             hx * hy * gz, gx * hy * gz, hx * gy * gz, gx * gy * gz};
-        const Surface *s = g.surface.data() + base;
         float x = 0, y = 0, z = 0, m = 0;
         for (int k = 0; k < 8; ++k) {
             const Surface &q = s[corner_offset(c, k)];
             m += w[k] * static_cast<float>(q.gradient);
-            // The byte's magnitude, a quarter up: a gradient below the
-            // byte's first step still has its direction.
-            const float wm = w[k] * (static_cast<float>(q.gradient) + 0.25f);
+            const float wm = w[k] * (static_cast<float>(q.gradient) + kDirectionFloor);
             x += wm * static_cast<float>(q.normal[0]);
             y += wm * static_cast<float>(q.normal[1]);
             z += wm * static_cast<float>(q.normal[2]);
         }
+        finish(x, y, z, m);
+    }
+
+#if defined(__SSE2__)
+    static __m128i words(const Surface *s, int64_t a, int64_t b, int64_t c, int64_t d)
+    {
+        int32_t w[4];
+        std::memcpy(&w[0], s + a, 4);
+        std::memcpy(&w[1], s + b, 4);
+        std::memcpy(&w[2], s + c, 4);
+        std::memcpy(&w[3], s + d, 4);
+        return _mm_loadu_si128(reinterpret_cast<const __m128i *>(w));
+    }
+
+    [[gnu::always_inline]] void weigh_sse2(const Surface *s, const VoxelGrid::Strides &c, const Cell &cell)
+    {
+        // Corners 0-3 (the k face) and 4-7 (the k + 1 face), each word
+        // normal[0..2] in bytes 0-2 (signed), the magnitude in byte 3.
+        const __m128i low = words(s, 0, c.i, c.j, c.j + c.i);
+        const __m128i high = words(s, c.k, c.k + c.i, c.k + c.j, c.k + c.j + c.i);
+        const float gx = cell.fx, gy = cell.fy, hx = 1.0f - gx, hy = 1.0f - gy;
+        const __m128 wxy = _mm_setr_ps(hx * hy, gx * hy, hx * gy, gx * gy);
+        const __m128 wl = _mm_mul_ps(wxy, _mm_set1_ps(1.0f - cell.fz)), wh = _mm_mul_ps(wxy, _mm_set1_ps(cell.fz));
+        const auto field = [](__m128i v, int shift) {
+            return _mm_cvtepi32_ps(_mm_srai_epi32(_mm_slli_epi32(v, shift), 24));
+        };
+        const __m128 ml = _mm_cvtepi32_ps(_mm_srli_epi32(low, 24)), mh = _mm_cvtepi32_ps(_mm_srli_epi32(high, 24));
+        const __m128 floor = _mm_set1_ps(kDirectionFloor);
+        const __m128 dl = _mm_mul_ps(wl, _mm_add_ps(ml, floor)), dh = _mm_mul_ps(wh, _mm_add_ps(mh, floor));
+        __m128 x = _mm_add_ps(_mm_mul_ps(dl, field(low, 24)), _mm_mul_ps(dh, field(high, 24)));
+        __m128 y = _mm_add_ps(_mm_mul_ps(dl, field(low, 16)), _mm_mul_ps(dh, field(high, 16)));
+        __m128 z = _mm_add_ps(_mm_mul_ps(dl, field(low, 8)), _mm_mul_ps(dh, field(high, 8)));
+        __m128 m = _mm_add_ps(_mm_mul_ps(wl, ml), _mm_mul_ps(wh, mh));
+        _MM_TRANSPOSE4_PS(x, y, z, m);
+        alignas(16) float sum[4];
+        _mm_store_ps(sum, _mm_add_ps(_mm_add_ps(x, y), _mm_add_ps(z, m)));
+        finish(sum[0], sum[1], sum[2], sum[3]);
+    }
+#endif
+
+    [[gnu::always_inline]] void finish(float x, float y, float z, float m)
+    {
         const float length = std::sqrt(x * x + y * y + z * z);
         const float unit = length > 0.0f ? 1.0f / length : 0.0f;
         normal[0] = x * unit;
@@ -117,7 +185,7 @@ struct FieldGradient {
     float normal[3];
     float magnitude; // on Surface::gradient's 8-bit scale, [0, 255]
 
-    FieldGradient(const VoxelGrid &g, const float inverse[9], const Cell &cell)
+    [[gnu::always_inline]] FieldGradient(const VoxelGrid &g, const float inverse[9], const Cell &cell)
     {
         const float *c = cell.corner;
         const float x = cell.fx, y = cell.fy, z = cell.fz, hx = 1.0f - x, hy = 1.0f - y, hz = 1.0f - z;

@@ -332,10 +332,11 @@ private:
                                      static_cast<double>(g.nz - 1)});
         const bool enters_face = t0 > 0 && std::fabs(t0 - v0) < 1e-9, leaves_face = std::fabs(t1 - v1) < 1e-9;
         Along along(g, pass, pass.shading->enabled || boundaries_.active());
-        along.visibility = visibility;
         along.offset_fraction = static_cast<float>(offset_fraction);
+        along.visibility = visibility;
         for (int a = 0; a < 3; ++a)
             along.light[a] = static_cast<float>(-ray.direction[a]);
+        Gathered gathered;
         // Start on the global sample lattice, so images do not shimmer as the
         // box is clipped, shifted by a fixed per-pixel fraction of a step.
         const double offset = offset_fraction * step;
@@ -346,13 +347,14 @@ private:
         // Where structures meet, a structure thinner than a step (a thin
         // shell's region between its saddle's isosurfaces) would be missed
         // between samples, or caught by one sample in a few (speckle): a
-        // sample in a mixed cell is taken as kRefine samples across its step;
-        // not in the coarse pass, a preview that must keep its frame rate.
+        // step in a mixed cell whose labels differ across it is taken as
+        // kRefine samples; not in the coarse pass, a preview that must keep
+        // its frame rate.
         const bool refine = along.resolve && !pass.coarse;
         const bool prefetch = g.nx * g.ny * g.nz >= kPrefetchFrom;
         const VoxelGrid::Strides cell_strides = g.strides();
         const int64_t dj = cell_strides.j, dk = cell_strides.k;
-        while (t <= t1 && along.acc[3] < termination) {
+        while (t <= t1 && gathered.acc[3] < termination) {
             const double px = o[0] + t * d[0], py = o[1] + t * d[1], pz = o[2] + t * d[2];
             const int64_t i = std::min(static_cast<int64_t>(px), last_i);
             const int64_t j = std::min(static_cast<int64_t>(py), last_j);
@@ -380,8 +382,8 @@ private:
                 if (labelled)
                     g.label.prefetch(cell);
             }
-            if (refine && (g.label.word(g.index(i, j, k)) & 1u)) {
-                integrate_refined(pass, o, d, t, t0, t1, along);
+            if (refine && (g.label.word(g.index(i, j, k)) & 1u) && labels_vary(pass, o, d, t, t0, t1, along)) {
+                gathered = integrate_refined(pass, o, d, t, t0, t1, along, gathered);
             } else {
                 // A sample stands for the step around it; at a face, for
                 // the part of it inside.
@@ -391,20 +393,22 @@ private:
                 if (leaves_face && t + step > t1)
                     steps += static_cast<float>((t1 - t) / step) - 0.5f;
                 integrate(pass, table, i, j, k, static_cast<float>(px - i), static_cast<float>(py - j),
-                          static_cast<float>(pz - k), steps, t, along);
+                          static_cast<float>(pz - k), steps, t, along, gathered);
             }
             t += step;
         }
+        if (gathered.label_share > 0)
+            visibility[gathered.label] += gathered.label_share;
         Sample out;
-        const float rest = 1.0f - along.acc[3];
+        const float rest = 1.0f - gathered.acc[3];
         for (int ch = 0; ch < 3; ++ch)
-            out.rgba[ch] = std::min(1.0f, along.acc[ch] + rest * background[ch] * background[3]);
-        out.rgba[3] = std::min(1.0f, along.acc[3] + rest * background[3]);
-        out.depth = along.depth;
+            out.rgba[ch] = std::min(1.0f, gathered.acc[ch] + rest * background[ch] * background[3]);
+        out.rgba[3] = std::min(1.0f, gathered.acc[3] + rest * background[3]);
+        out.depth = gathered.depth;
         return out;
     }
 
-    // What a ray has gathered so far, and what its samples share.
+    // What a ray's samples share.
     struct Along {
         Along(const VoxelGrid &g, const Pass &pass, bool surfaces)
             : high{static_cast<double>(g.nx - 1), static_cast<double>(g.ny - 1), static_cast<double>(g.nz - 1)},
@@ -416,11 +420,9 @@ private:
             for (int c = 0; c < 9; ++c)
                 inverse[c] = static_cast<float>(g.to_voxel[c]);
         }
-        float inverse[9];         // rows of M^-1 = columns of M^-T
-        float acc[4] = {0, 0, 0, 0}; // premultiplied colour and opacity
-        float depth = std::numeric_limits<float>::infinity();
+        float inverse[9];           // rows of M^-1 = columns of M^-T
+        float light[3] = {0, 0, 0}; // towards the camera
         double *visibility = nullptr; // per label, T * alpha
-        float light[3] = {0, 0, 0};   // towards the camera
         float offset_fraction = 0;
         const double high[3];    // the last voxel index along each axis
         const int64_t last[3];   // the last cell's
@@ -429,26 +431,82 @@ private:
         const bool surfaces, smooth;  // gradients needed; at the sample
     };
 
-    // The step around t in a cell where structures meet, as kRefine
-    // samples (out of line: the rarer path).
-    [[gnu::noinline]] void integrate_refined(const Pass &pass, const Vec3 &o, const Vec3 &d, double t, double t0,
-                                             double t1, Along &along) const
+    // What a ray has gathered so far: a value that is passed, never pointed
+    // at, so that it stays in registers across the sample loop (it used to
+    // be a member of Along, whose address the refined path takes: every
+    // sample stored and reloaded it).
+    struct Gathered {
+        float acc[4] = {0, 0, 0, 0}; // premultiplied colour and opacity
+        float depth = std::numeric_limits<float>::infinity();
+        // T * alpha of the label of the latest samples, added to the ray's
+        // visibility when the label changes (not a store per sample).
+        uint32_t label = 0;
+        double label_share = 0;
+    };
+
+    // Sample m of kRefine across the step around t: its cell and its place
+    // in it.  Within half a step of a sample inside: clamped into the grid.
+    struct SubSample {
+        double t;
+        int64_t c[3];
+        float f[3];
+    };
+    static SubSample sub_sample(const Pass &pass, const Vec3 &o, const Vec3 &d, double t, int m, const Along &along)
     {
-        const double sub = pass.step / kRefine;
-        for (int m = 0; m < kRefine && along.acc[3] < pass.termination; ++m) {
-            const double ts = t + (m + 0.5 - 0.5 * kRefine) * sub;
-            if (ts < t0 || ts > t1)
-                continue;
-            // Within half a step of a sample inside: clamped into the grid.
-            double at[3] = {o[0] + ts * d[0], o[1] + ts * d[1], o[2] + ts * d[2]};
-            int64_t c[3];
-            for (int a = 0; a < 3; ++a) {
-                at[a] = std::clamp(at[a], 0.0, along.high[a]);
-                c[a] = std::min(static_cast<int64_t>(at[a]), along.last[a]);
-            }
-            integrate(pass, *pass.refined, c[0], c[1], c[2], static_cast<float>(at[0] - c[0]),
-                      static_cast<float>(at[1] - c[1]), static_cast<float>(at[2] - c[2]), 1.0f, ts, along);
+        SubSample s;
+        s.t = t + (m + 0.5 - 0.5 * kRefine) * (pass.step / kRefine);
+        for (int a = 0; a < 3; ++a) {
+            const double at = std::clamp(o[a] + s.t * d[a], 0.0, along.high[a]);
+            s.c[a] = std::min(static_cast<int64_t>(at), along.last[a]);
+            s.f[a] = static_cast<float>(at - static_cast<double>(s.c[a]));
         }
+        return s;
+    }
+
+    // Whether the labels of the step around t, in a cell where structures
+    // meet, differ between its kRefine samples: a boundary between
+    // structures (or a structure thinner than the step) crosses the step.
+    // Most steps in mixed cells lie on one side of it and are taken as one
+    // sample (the CT head's full frame: 3.0 s when every such step was
+    // refined).  Out of line: the rarer path.
+    [[gnu::noinline]] bool labels_vary(const Pass &pass, const Vec3 &o, const Vec3 &d, double t, double t0,
+                                       double t1, const Along &along) const
+    {
+        const VoxelGrid &g = *pass.grid;
+        bool any = false;
+        uint32_t first = 0;
+        for (int m = 0; m < kRefine; ++m) {
+            const SubSample s = sub_sample(pass, o, d, t, m, along);
+            if (s.t < t0 || s.t > t1)
+                continue;
+            const std::size_t base = g.index(s.c[0], s.c[1], s.c[2]);
+            const uint32_t word = g.label.word(base);
+            uint32_t label = word >> 1;
+            if (word & 1u) {
+                const Cell cell(g, base, along.strides, s.f[0], s.f[1], s.f[2]);
+                label = cell.resolved_label(g, base, along.strides, cell.value());
+            }
+            if (any && label != first)
+                return true;
+            any = true;
+            first = label;
+        }
+        return false;
+    }
+
+    // The step around t where labels differ across it, as kRefine samples
+    // (out of line: the rarer path).
+    [[gnu::noinline]] Gathered integrate_refined(const Pass &pass, const Vec3 &o, const Vec3 &d, double t, double t0,
+                                                 double t1, const Along &along, Gathered gathered) const
+    {
+        for (int m = 0; m < kRefine && gathered.acc[3] < pass.termination; ++m) {
+            const SubSample s = sub_sample(pass, o, d, t, m, along);
+            if (s.t < t0 || s.t > t1)
+                continue;
+            integrate(pass, *pass.refined, s.c[0], s.c[1], s.c[2], s.f[0], s.f[1], s.f[2], 1.0f, s.t, along,
+                      gathered);
+        }
+        return gathered;
     }
 
     // The sample at voxel position c + f (c its cell's lowest voxel, f in
@@ -457,7 +515,7 @@ private:
     // shaded, at distance t.
     [[gnu::always_inline]] void integrate(const Pass &pass, const ClassTable &table, int64_t ci, int64_t cj,
                                           int64_t ck, float fx, float fy, float fz, float steps, double t,
-                                          Along &along) const
+                                          const Along &along, Gathered &gathered) const
     {
         const VoxelGrid &g = *pass.grid;
         const Shading &shading = *pass.shading;
@@ -499,7 +557,7 @@ private:
         }
         const float alpha = colour[3] * m;
         float r = colour[0] * m, gr = colour[1] * m, b = colour[2] * m;
-        const float w = 1.0f - along.acc[3];
+        const float w = 1.0f - gathered.acc[3];
         if (shading.enabled && (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f)) {
             const float facing = n[0] * along.light[0] + n[1] * along.light[1] + n[2] * along.light[2];
             const float ndl = std::min(1.0f, std::fabs(facing));
@@ -519,13 +577,18 @@ private:
             gr = gr * lit + spec;
             b = b * lit + spec;
         }
-        along.acc[0] += w * r;
-        along.acc[1] += w * gr;
-        along.acc[2] += w * b;
-        along.acc[3] += w * alpha;
-        along.visibility[label] += w * alpha;
-        if (along.acc[3] >= 0.5f && along.depth == std::numeric_limits<float>::infinity())
-            along.depth = static_cast<float>(t); // rays start at the camera (plane): t is the distance
+        gathered.acc[0] += w * r;
+        gathered.acc[1] += w * gr;
+        gathered.acc[2] += w * b;
+        gathered.acc[3] += w * alpha;
+        if (label != gathered.label) {
+            along.visibility[gathered.label] += gathered.label_share;
+            gathered.label = label;
+            gathered.label_share = 0;
+        }
+        gathered.label_share += w * alpha;
+        if (gathered.acc[3] >= 0.5f && gathered.depth == std::numeric_limits<float>::infinity())
+            gathered.depth = static_cast<float>(t); // rays start at the camera (plane): t is the distance
     }
 
     // Where the ray o + t d (t >= 0) is inside the box [lo, hi]: t0 > t1

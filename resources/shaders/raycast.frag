@@ -13,7 +13,8 @@
 // of a uniform branch): LABELLED, RESOLVE (a sample in a cell of mixed
 // labels takes the label its value implies, walking the labels' tree as
 // plugins/raycast/label_tree.hpp does; with REFINE, outside the coarse
-// pass, a step in such a cell is taken as four samples; else the nearest
+// pass, a step in such a cell whose labels differ across it is taken as
+// four samples; else the nearest
 // voxel's label), SMOOTH (the gradient
 // at the sample, trilinear between the voxels', as
 // plugins/raycast/cell_sample.hpp, or with FIELD on thick slices the
@@ -245,6 +246,37 @@ ivec3 g_last, g_wide;
 // The sample at voxel position x composited into the ray at distance t:
 // classified by the step's tables (the refined step's when `refined`),
 // opacity 1 - (1 - a)^steps, shaded (RayCaster::integrate).
+#ifdef REFINE
+// The label of the sample at x (as integrate takes it).
+int label_at(vec3 x)
+{
+    x = clamp(x, vec3(0.0), vec3(u_dims - 1));
+    ivec3 c = min(ivec3(x), g_last);
+    uint word = texelFetch(u_labels, c, 0).r;
+    if ((word & 1u) == 0u)
+        return int(word >> 1u);
+    return resolved_label(c, g_wide, texture(u_values, (x + 0.5) / vec3(u_dims)).r);
+}
+
+// Whether the labels of the four samples across the step around t differ
+// (the CPU ray caster's labels_vary): only then is the step refined.
+bool labels_vary(vec3 o, vec3 d, float t, float t0, float t1)
+{
+    float sub = u_step / 4.0;
+    int first = -1;
+    for (int m = 0; m < 4; ++m) {
+        float ts = t + (float(m) - 1.5) * sub;
+        if (ts < t0 || ts > t1)
+            continue;
+        int label = label_at(o + ts * d);
+        if (first >= 0 && label != first)
+            return true;
+        first = label;
+    }
+    return false;
+}
+#endif
+
 void integrate(vec3 x, float t, float steps, bool refined)
 {
     x = clamp(x, vec3(0.0), vec3(u_dims - 1));
@@ -361,10 +393,10 @@ void main()
             continue;
         }
 #ifdef REFINE
-        // A cell where structures meet: four samples across the step, so
-        // a structure thinner than a step is not missed between samples
-        // (not in the coarse pass).
-        if ((texelFetch(u_labels, c, 0).r & 1u) != 0u) {
+        // A cell where structures meet and labels differ across the step:
+        // four samples across it, so a structure thinner than a step is not
+        // missed between samples (not in the coarse pass).
+        if ((texelFetch(u_labels, c, 0).r & 1u) != 0u && labels_vary(o, d, t, t0, t1)) {
             float sub = u_step / 4.0;
             for (int m = 0; m < 4 && g_acc.a < u_termination; ++m) {
                 float ts = t + (float(m) - 1.5) * sub;
