@@ -30,6 +30,21 @@ inline int64_t corner_offset(const VoxelGrid::Strides &s, int m)
     return (m & 1 ? s.i : 0) + (m & 2 ? s.j : 0) + (m & 4 ? s.k : 0);
 }
 
+// 1 / sqrt(x) for x > 0 (0 for x <= 0): with SSE an estimate and one
+// Newton step (relative error about 1e-7), not a square root and a division
+// (the divider was a bottleneck of the shaded sample).
+[[gnu::always_inline]] inline float inverse_sqrt(float x)
+{
+    if (!(x > 0.0f))
+        return 0.0f;
+#if defined(__SSE2__)
+    const float y = _mm_cvtss_f32(_mm_rsqrt_ss(_mm_set_ss(x)));
+    return y * (1.5f - 0.5f * x * y * y);
+#else
+    return 1.0f / std::sqrt(x);
+#endif
+}
+
 struct Cell {
     float corner[8]; // the corners' values, corner m as corner_offset
     float fx, fy, fz; // the sample's place in the cell, [0, 1] each
@@ -60,19 +75,24 @@ struct Cell {
     }
 
     // A cell whose corners carry more than one label: the label of a
-    // sample of `value` in it, from a lowest and a highest corner.
-    [[gnu::noinline]] uint32_t resolved_label(const VoxelGrid &g, std::size_t base, const VoxelGrid::Strides &s,
-                                              float value) const
+    // sample of `value` in it, from a lowest and a highest corner.  Static,
+    // reading the corners again: a Cell whose address a call out of line
+    // takes lives on the stack, and every sample (not just the rare ones
+    // that get here) stored its corners there and loaded them back.
+    [[gnu::noinline]] static uint32_t resolved_label(const VoxelGrid &g, std::size_t base, const VoxelGrid::Strides &s,
+                                                     float value)
     {
-        int low = 0, high = 0;
+        const float *v = g.value.data() + base;
+        int64_t low = 0, high = 0;
         for (int m = 1; m < 8; ++m) {
-            if (corner[m] < corner[low])
-                low = m;
-            if (corner[m] > corner[high])
-                high = m;
+            const int64_t at = corner_offset(s, m);
+            if (v[at] < v[low])
+                low = at;
+            if (v[at] > v[high])
+                high = at;
         }
-        return g.tree.resolve(g.label[base + static_cast<std::size_t>(corner_offset(s, low))],
-                              g.label[base + static_cast<std::size_t>(corner_offset(s, high))], value);
+        return g.tree.resolve(g.label[base + static_cast<std::size_t>(low)],
+                              g.label[base + static_cast<std::size_t>(high)], value);
     }
 };
 
@@ -129,12 +149,14 @@ private:
 #if defined(__SSE2__)
     static __m128i words(const Surface *s, int64_t a, int64_t b, int64_t c, int64_t d)
     {
-        int32_t w[4];
-        std::memcpy(&w[0], s + a, 4);
-        std::memcpy(&w[1], s + b, 4);
-        std::memcpy(&w[2], s + c, 4);
-        std::memcpy(&w[3], s + d, 4);
-        return _mm_loadu_si128(reinterpret_cast<const __m128i *>(w));
+        // Four word loads into lanes (movd, unpack): not four stores and
+        // one wide load, which store forwarding cannot serve.
+        const auto word = [s](int64_t at) {
+            int32_t w;
+            std::memcpy(&w, s + at, 4);
+            return _mm_cvtsi32_si128(w);
+        };
+        return _mm_unpacklo_epi64(_mm_unpacklo_epi32(word(a), word(b)), _mm_unpacklo_epi32(word(c), word(d)));
     }
 
     [[gnu::always_inline]] void weigh_sse2(const Surface *s, const VoxelGrid::Strides &c, const Cell &cell)
@@ -165,8 +187,7 @@ private:
 
     [[gnu::always_inline]] void finish(float x, float y, float z, float m)
     {
-        const float length = std::sqrt(x * x + y * y + z * z);
-        const float unit = length > 0.0f ? 1.0f / length : 0.0f;
+        const float unit = inverse_sqrt(x * x + y * y + z * z);
         normal[0] = x * unit;
         normal[1] = y * unit;
         normal[2] = z * unit;
@@ -196,8 +217,9 @@ struct FieldGradient {
         const float w[3] = {inverse[0] * di + inverse[3] * dj + inverse[6] * dk,
                             inverse[1] * di + inverse[4] * dj + inverse[7] * dk,
                             inverse[2] * di + inverse[5] * dj + inverse[8] * dk};
-        const float length = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-        const float unit = length > g.flat_gradient ? 1.0f / length : 0.0f;
+        const float squared = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+        const float inverse_length = inverse_sqrt(squared), length = squared * inverse_length;
+        const float unit = length > g.flat_gradient ? inverse_length : 0.0f;
         for (int a = 0; a < 3; ++a)
             normal[a] = w[a] * unit;
         magnitude = std::min(255.0f, length * g.gradient_scale);

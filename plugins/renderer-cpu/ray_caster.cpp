@@ -139,6 +139,7 @@ public:
         pass.table = pass.coarse ? &coarse_table_ : &table_;
         pass.refined = pass.coarse ? &coarse_refined_table_ : &refined_table_;
         pass.sample_index = request.pass == ARBOR_RENDER_PASS_SUPERSAMPLE ? request.sample_index : 0;
+        pass.cast = loop_for(g, shading, pass.sample_gradients);
 
         const unsigned threads = params().integer("threads") > 0 ? static_cast<unsigned>(params().integer("threads"))
                                                                  : std::max(1u, std::thread::hardware_concurrency());
@@ -183,6 +184,8 @@ private:
         double step = 1.0;
         const float *background = nullptr;
         uint32_t sample_index = 0; // supersampling: which offset within the pixel
+        // The loop for this grid and these settings (cast<kLabels, kSurfaces>).
+        Sample (RayCaster::*cast)(const Pass &, double, double, double, double *) const = nullptr;
     };
 
     // Brings every derived structure up to date with the request: the grid
@@ -252,7 +255,7 @@ private:
                         return;
                     for (uint32_t x = 0; x < out.width; ++x) {
                         const uint32_t fx = request.region_x + x, fy = request.region_y + y;
-                        const Sample s = cast(pass, fx + offset[0], fy + offset[1], ray_offset(pass.jitter, pass.sample_index, fx, fy),
+                        const Sample s = (this->*pass.cast)(pass, fx + offset[0], fy + offset[1], ray_offset(pass.jitter, pass.sample_index, fx, fy),
                                               mine.data());
                         float *px = out.rgba + static_cast<int64_t>(y) * out.row_stride + 4 * static_cast<int64_t>(x);
                         if (pass.sample_index) {
@@ -293,7 +296,7 @@ private:
                 for (int64_t m = 0; m < w; ++m) {
                     const double px = lattice.x(m), py = lattice.y(n);
                     rays[static_cast<std::size_t>(n * w + m)] =
-                        cast(pass, px, py,
+                        (this->*pass.cast)(pass, px, py,
                              ray_offset(pass.jitter, 0, static_cast<uint32_t>(px), static_cast<uint32_t>(py)),
                              mine.data());
                 }
@@ -308,6 +311,39 @@ private:
     // The ray through frame position (px, py), its first sample `offset` of
     // a step past the lattice.  `visibility`: per label, what this ray's
     // samples of it contribute (T * alpha) is added.
+    // Where a sample's gradient comes from: none needed (neither shading
+    // nor boundary emphasis), its nearest voxel's, the voxels' trilinear
+    // (SampleGradient), the field's own (FieldGradient, thick slices).
+    enum class Gradient { None, Voxel, Sample, Field };
+    using Loop = Sample (RayCaster::*)(const Pass &, double, double, double, double *) const;
+
+    template <bool kLabels>
+    static Loop loop_for(Gradient gradient)
+    {
+        switch (gradient) {
+        case Gradient::None: return &RayCaster::cast<kLabels, Gradient::None>;
+        case Gradient::Voxel: return &RayCaster::cast<kLabels, Gradient::Voxel>;
+        case Gradient::Sample: return &RayCaster::cast<kLabels, Gradient::Sample>;
+        case Gradient::Field: break;
+        }
+        return &RayCaster::cast<kLabels, Gradient::Field>;
+    }
+
+    Loop loop_for(const VoxelGrid &g, const Shading &shading, bool sample_gradients) const
+    {
+        const Gradient gradient = !(shading.enabled || boundaries_.active()) ? Gradient::None
+                                  : !sample_gradients                         ? Gradient::Voxel
+                                  : g.thick_slices                            ? Gradient::Field
+                                                                              : Gradient::Sample;
+        return g.label.empty() ? loop_for<false>(gradient) : loop_for<true>(gradient);
+    }
+
+    // kLabels: the grid has labels; kGradient: where a sample's gradient
+    // comes from.  A loop compiled for each: with everything in one, the
+    // transparent samples of a plain frame paid for the registers that
+    // labels and gradients hold (spills; 33 % more instructions in the
+    // unshaded frame than before issue 49, and its time).
+    template <bool kLabels, Gradient kGradient>
     Sample cast(const Pass &pass, double px_frame, double py_frame, double offset_fraction, double *visibility) const
     {
         const VoxelGrid &g = *pass.grid;
@@ -331,7 +367,7 @@ private:
                                     {static_cast<double>(g.nx - 1), static_cast<double>(g.ny - 1),
                                      static_cast<double>(g.nz - 1)});
         const bool enters_face = t0 > 0 && std::fabs(t0 - v0) < 1e-9, leaves_face = std::fabs(t1 - v1) < 1e-9;
-        Along along(g, pass, pass.shading->enabled || boundaries_.active());
+        Along along(g, pass);
         along.offset_fraction = static_cast<float>(offset_fraction);
         along.visibility = visibility;
         for (int a = 0; a < 3; ++a)
@@ -343,18 +379,19 @@ private:
         double t = std::ceil((t0 - offset) / step) * step + offset;
         const double first = t;
         const int64_t last_i = along.last[0], last_j = along.last[1], last_k = along.last[2];
-        const bool labelled = along.labelled;
+        const bool labelled = kLabels && along.labelled;
         // Where structures meet, a structure thinner than a step (a thin
         // shell's region between its saddle's isosurfaces) would be missed
         // between samples, or caught by one sample in a few (speckle): a
         // step in a mixed cell whose labels differ across it is taken as
         // kRefine samples; not in the coarse pass, a preview that must keep
         // its frame rate.
-        const bool refine = along.resolve && !pass.coarse;
+        const bool refine = kLabels && along.resolve && !pass.coarse;
         const bool prefetch = g.nx * g.ny * g.nz >= kPrefetchFrom;
         const VoxelGrid::Strides cell_strides = g.strides();
         const int64_t dj = cell_strides.j, dk = cell_strides.k;
-        while (t <= t1 && gathered.acc[3] < termination) {
+        const float opaque = 1.0f - termination; // the transmittance where a ray stops
+        while (t <= t1 && gathered.transmittance > opaque) {
             const double px = o[0] + t * d[0], py = o[1] + t * d[1], pz = o[2] + t * d[2];
             const int64_t i = std::min(static_cast<int64_t>(px), last_i);
             const int64_t j = std::min(static_cast<int64_t>(py), last_j);
@@ -377,13 +414,15 @@ private:
                     __builtin_prefetch(value + row);
                 // Surface words only where a sample shows: two rows of four
                 // (all four cost more on the many that do not).
-                __builtin_prefetch(surface);
-                __builtin_prefetch(surface + dk + dj);
+                if constexpr (kGradient == Gradient::Voxel || kGradient == Gradient::Sample) {
+                    __builtin_prefetch(surface);
+                    __builtin_prefetch(surface + dk + dj);
+                }
                 if (labelled)
                     g.label.prefetch(cell);
             }
             if (refine && (g.label.word(g.index(i, j, k)) & 1u) && labels_vary(pass, o, d, t, t0, t1, along)) {
-                gathered = integrate_refined(pass, o, d, t, t0, t1, along, gathered);
+                gathered = integrate_refined<kGradient>(pass, o, d, t, t0, t1, along, gathered);
             } else {
                 // A sample stands for the step around it; at a face, for
                 // the part of it inside.
@@ -392,7 +431,7 @@ private:
                     steps += static_cast<float>((t - t0) / step) - 0.5f;
                 if (leaves_face && t + step > t1)
                     steps += static_cast<float>((t1 - t) / step) - 0.5f;
-                integrate(pass, table, i, j, k, static_cast<float>(px - i), static_cast<float>(py - j),
+                integrate<kLabels, kGradient>(pass, table, i, j, k, static_cast<float>(px - i), static_cast<float>(py - j),
                           static_cast<float>(pz - k), steps, t, along, gathered);
             }
             t += step;
@@ -400,22 +439,21 @@ private:
         if (gathered.label_share > 0)
             visibility[gathered.label] += gathered.label_share;
         Sample out;
-        const float rest = 1.0f - gathered.acc[3];
+        const float rest = gathered.transmittance;
         for (int ch = 0; ch < 3; ++ch)
             out.rgba[ch] = std::min(1.0f, gathered.acc[ch] + rest * background[ch] * background[3]);
-        out.rgba[3] = std::min(1.0f, gathered.acc[3] + rest * background[3]);
+        out.rgba[3] = std::min(1.0f, 1.0f - rest + rest * background[3]);
         out.depth = gathered.depth;
         return out;
     }
 
     // What a ray's samples share.
     struct Along {
-        Along(const VoxelGrid &g, const Pass &pass, bool surfaces)
+        Along(const VoxelGrid &g, const Pass &pass)
             : high{static_cast<double>(g.nx - 1), static_cast<double>(g.ny - 1), static_cast<double>(g.nz - 1)},
               last{std::max<int64_t>(g.nx - 2, 0), std::max<int64_t>(g.ny - 2, 0), std::max<int64_t>(g.nz - 2, 0)},
               strides(g.strides()), labelled(!g.label.empty()),
-              resolve(labelled && pass.sample_labels && !g.tree.empty()), surfaces(surfaces),
-              smooth(surfaces && pass.sample_gradients)
+              resolve(labelled && pass.sample_labels && !g.tree.empty())
         {
             for (int c = 0; c < 9; ++c)
                 inverse[c] = static_cast<float>(g.to_voxel[c]);
@@ -428,7 +466,6 @@ private:
         const int64_t last[3];   // the last cell's
         const VoxelGrid::Strides strides;
         const bool labelled, resolve; // labels; resolved per sample
-        const bool surfaces, smooth;  // gradients needed; at the sample
     };
 
     // What a ray has gathered so far: a value that is passed, never pointed
@@ -436,7 +473,11 @@ private:
     // be a member of Along, whose address the refined path takes: every
     // sample stored and reloaded it).
     struct Gathered {
-        float acc[4] = {0, 0, 0, 0}; // premultiplied colour and opacity
+        float acc[3] = {0, 0, 0}; // premultiplied colour
+        // What passes the samples so far: 1 - opacity.  Its product is the
+        // loop's one chain from sample to sample (a multiplication), where
+        // opacity += (1 - opacity) alpha was three operations long.
+        float transmittance = 1;
         float depth = std::numeric_limits<float>::infinity();
         // T * alpha of the label of the latest samples, added to the ray's
         // visibility when the label changes (not a store per sample).
@@ -484,7 +525,7 @@ private:
             uint32_t label = word >> 1;
             if (word & 1u) {
                 const Cell cell(g, base, along.strides, s.f[0], s.f[1], s.f[2]);
-                label = cell.resolved_label(g, base, along.strides, cell.value());
+                label = Cell::resolved_label(g, base, along.strides, cell.value());
             }
             if (any && label != first)
                 return true;
@@ -496,14 +537,15 @@ private:
 
     // The step around t where labels differ across it, as kRefine samples
     // (out of line: the rarer path).
+    template <Gradient kGradient>
     [[gnu::noinline]] Gathered integrate_refined(const Pass &pass, const Vec3 &o, const Vec3 &d, double t, double t0,
                                                  double t1, const Along &along, Gathered gathered) const
     {
-        for (int m = 0; m < kRefine && gathered.acc[3] < pass.termination; ++m) {
+        for (int m = 0; m < kRefine && gathered.transmittance > 1.0f - pass.termination; ++m) {
             const SubSample s = sub_sample(pass, o, d, t, m, along);
             if (s.t < t0 || s.t > t1)
                 continue;
-            integrate(pass, *pass.refined, s.c[0], s.c[1], s.c[2], s.f[0], s.f[1], s.f[2], 1.0f, s.t, along,
+            integrate<true, kGradient>(pass, *pass.refined, s.c[0], s.c[1], s.c[2], s.f[0], s.f[1], s.f[2], 1.0f, s.t, along,
                       gathered);
         }
         return gathered;
@@ -513,6 +555,7 @@ private:
     // [0, 1]^3) composited into the ray: its value, label and gradient
     // from its cell, classified by `table`, opacity 1 - (1 - a)^steps,
     // shaded, at distance t.
+    template <bool kLabels, Gradient kGradient>
     [[gnu::always_inline]] void integrate(const Pass &pass, const ClassTable &table, int64_t ci, int64_t cj,
                                           int64_t ck, float fx, float fy, float fz, float steps, double t,
                                           const Along &along, Gathered &gathered) const
@@ -527,38 +570,41 @@ private:
         const std::size_t nearest =
             base + static_cast<std::size_t>((fx >= 0.5f ? s.i : 0) + (fy >= 0.5f ? s.j : 0) + (fz >= 0.5f ? s.k : 0));
         uint32_t label = 0;
-        if (along.resolve) {
-            const uint32_t word = g.label.word(base);
-            label = word & 1u ? cell.resolved_label(g, base, s, value) : word >> 1;
-        } else if (along.labelled) {
-            label = g.label[nearest];
+        if constexpr (kLabels) {
+            if (along.resolve) {
+                const uint32_t word = g.label.word(base);
+                label = word & 1u ? Cell::resolved_label(g, base, s, value) : word >> 1;
+            } else {
+                label = g.label[nearest];
+            }
         }
         const float *colour = table.lookup(label, value);
         if (!(colour[3] > 0.0f))
             return;
         float n[3] = {0, 0, 0}, gradient = 0; // unless shaded or emphasised
-        if (along.smooth && g.thick_slices) {
+        if constexpr (kGradient == Gradient::Field) {
             const FieldGradient at_sample(g, along.inverse, cell);
             n[0] = at_sample.normal[0], n[1] = at_sample.normal[1], n[2] = at_sample.normal[2];
             gradient = at_sample.magnitude;
-        } else if (along.smooth) {
+        } else if constexpr (kGradient == Gradient::Sample) {
             const SampleGradient at_sample(g, base, s, cell);
             n[0] = at_sample.normal[0], n[1] = at_sample.normal[1], n[2] = at_sample.normal[2];
             gradient = at_sample.magnitude;
-        } else if (along.surfaces) {
+        } else if constexpr (kGradient == Gradient::Voxel) {
             const Surface &surface = g.surface[nearest];
             n[0] = surface.normal[0] / 127.0f, n[1] = surface.normal[1] / 127.0f, n[2] = surface.normal[2] / 127.0f;
             gradient = surface.gradient;
         }
-        float m = boundaries_.active() ? boundaries_.factor(static_cast<uint8_t>(gradient + 0.5f)) : 1.0f;
+        constexpr bool kSurfaces = kGradient != Gradient::None;
+        float m = kSurfaces && boundaries_.active() ? boundaries_.factor(static_cast<uint8_t>(gradient + 0.5f)) : 1.0f;
         if (steps != 1.0f) {
             const float a = colour[3] * m;
             m *= a < 1.0f ? (1.0f - std::pow(1.0f - a, steps)) / a : 1.0f;
         }
         const float alpha = colour[3] * m;
         float r = colour[0] * m, gr = colour[1] * m, b = colour[2] * m;
-        const float w = 1.0f - gathered.acc[3];
-        if (shading.enabled && (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f)) {
+        const float w = gathered.transmittance;
+        if (kSurfaces && shading.enabled && (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f)) {
             const float facing = n[0] * along.light[0] + n[1] * along.light[1] + n[2] * along.light[2];
             const float ndl = std::min(1.0f, std::fabs(facing));
             // Headlight: the half vector is the light direction.
@@ -580,14 +626,14 @@ private:
         gathered.acc[0] += w * r;
         gathered.acc[1] += w * gr;
         gathered.acc[2] += w * b;
-        gathered.acc[3] += w * alpha;
+        gathered.transmittance *= 1.0f - alpha;
         if (label != gathered.label) {
             along.visibility[gathered.label] += gathered.label_share;
             gathered.label = label;
             gathered.label_share = 0;
         }
         gathered.label_share += w * alpha;
-        if (gathered.acc[3] >= 0.5f && gathered.depth == std::numeric_limits<float>::infinity())
+        if (gathered.transmittance <= 0.5f && gathered.depth == std::numeric_limits<float>::infinity())
             gathered.depth = static_cast<float>(t); // rays start at the camera (plane): t is the distance
     }
 

@@ -410,7 +410,7 @@ Upsampled upsample(const Volume &coarse, const arbor_label_map &map)
                 value[at] = cell.value();
                 const uint32_t word = g.label.word(base);
                 const bool mixed = word & 1u;
-                out.labels[at] = mixed ? cell.resolved_label(g, base, corners, value[at]) : word >> 1;
+                out.labels[at] = mixed ? raycast::Cell::resolved_label(g, base, corners, value[at]) : word >> 1;
                 const std::size_t nearest =
                     g.index(ci + (cell.fx >= 0.5f), cj + (cell.fy >= 0.5f), ck + (cell.fz >= 0.5f));
                 resolved += mixed;
