@@ -106,6 +106,11 @@ struct Cell {
 struct SampleGradient {
     float normal[3];
     float magnitude;
+    // normal = direction * inverse_length (0 where the gradient vanishes):
+    // a caller that needs only n . l takes (direction . l) * inverse_length
+    // (one product after the square root's estimate, not three before it).
+    float direction[3];
+    float inverse_length;
 
     [[gnu::always_inline]] SampleGradient(const VoxelGrid &g, std::size_t base, const VoxelGrid::Strides &c,
                                           const Cell &cell)
@@ -188,6 +193,8 @@ private:
     [[gnu::always_inline]] void finish(float x, float y, float z, float m)
     {
         const float unit = inverse_sqrt(x * x + y * y + z * z);
+        direction[0] = x, direction[1] = y, direction[2] = z;
+        inverse_length = unit;
         normal[0] = x * unit;
         normal[1] = y * unit;
         normal[2] = z * unit;
@@ -205,6 +212,8 @@ private:
 struct FieldGradient {
     float normal[3];
     float magnitude; // on Surface::gradient's 8-bit scale, [0, 255]
+    float direction[3]; // normal = direction * inverse_length, as SampleGradient's
+    float inverse_length;
 
     [[gnu::always_inline]] FieldGradient(const VoxelGrid &g, const float inverse[9], const Cell &cell)
     {
@@ -220,8 +229,11 @@ struct FieldGradient {
         const float squared = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
         const float inverse_length = inverse_sqrt(squared), length = squared * inverse_length;
         const float unit = length > g.flat_gradient ? inverse_length : 0.0f;
-        for (int a = 0; a < 3; ++a)
+        this->inverse_length = unit;
+        for (int a = 0; a < 3; ++a) {
+            direction[a] = w[a];
             normal[a] = w[a] * unit;
+        }
         magnitude = std::min(255.0f, length * g.gradient_scale);
     }
 };

@@ -581,18 +581,22 @@ private:
         const float *colour = table.lookup(label, value);
         if (!(colour[3] > 0.0f))
             return;
-        float n[3] = {0, 0, 0}, gradient = 0; // unless shaded or emphasised
+        // The normal is v * unit (unit 0: no direction to shade by).
+        float v[3] = {0, 0, 0}, unit = 0, gradient = 0; // unless shaded or emphasised
         if constexpr (kGradient == Gradient::Field) {
             const FieldGradient at_sample(g, along.inverse, cell);
-            n[0] = at_sample.normal[0], n[1] = at_sample.normal[1], n[2] = at_sample.normal[2];
+            v[0] = at_sample.direction[0], v[1] = at_sample.direction[1], v[2] = at_sample.direction[2];
+            unit = at_sample.inverse_length;
             gradient = at_sample.magnitude;
         } else if constexpr (kGradient == Gradient::Sample) {
             const SampleGradient at_sample(g, base, s, cell);
-            n[0] = at_sample.normal[0], n[1] = at_sample.normal[1], n[2] = at_sample.normal[2];
+            v[0] = at_sample.direction[0], v[1] = at_sample.direction[1], v[2] = at_sample.direction[2];
+            unit = at_sample.inverse_length;
             gradient = at_sample.magnitude;
         } else if constexpr (kGradient == Gradient::Voxel) {
             const Surface &surface = g.surface[nearest];
-            n[0] = surface.normal[0] / 127.0f, n[1] = surface.normal[1] / 127.0f, n[2] = surface.normal[2] / 127.0f;
+            v[0] = surface.normal[0], v[1] = surface.normal[1], v[2] = surface.normal[2];
+            unit = surface.normal[0] | surface.normal[1] | surface.normal[2] ? 1.0f / 127.0f : 0.0f;
             gradient = surface.gradient;
         }
         constexpr bool kSurfaces = kGradient != Gradient::None;
@@ -604,16 +608,16 @@ private:
         const float alpha = colour[3] * m;
         float r = colour[0] * m, gr = colour[1] * m, b = colour[2] * m;
         const float w = gathered.transmittance;
-        if (kSurfaces && shading.enabled && (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f)) {
-            const float facing = n[0] * along.light[0] + n[1] * along.light[1] + n[2] * along.light[2];
+        if (kSurfaces && shading.enabled && unit > 0.0f) {
+            const float facing = (v[0] * along.light[0] + v[1] * along.light[1] + v[2] * along.light[2]) * unit;
             const float ndl = std::min(1.0f, std::fabs(facing));
             // Headlight: the half vector is the light direction.
             const float spec = shading.highlight[static_cast<std::size_t>(ndl * 256.0f)] * alpha;
             float lit = shading.ambient + shading.diffuse * ndl;
             if (pass.occlusion > 0 && w * alpha >= LocalOcclusion::kContribution) {
                 // The side of the surface the viewer sees.
-                const float sign = facing >= 0.0f ? 1.0f : -1.0f;
-                const float side[3] = {sign * n[0], sign * n[1], sign * n[2]};
+                const float sign = facing >= 0.0f ? unit : -unit;
+                const float side[3] = {sign * v[0], sign * v[1], sign * v[2]};
                 const double p[3] = {static_cast<double>(ci) + fx, static_cast<double>(cj) + fy,
                                      static_cast<double>(ck) + fz};
                 lit *= 1.0f -
