@@ -82,6 +82,17 @@ struct Cell {
     [[gnu::noinline]] static uint32_t resolved_label(const VoxelGrid &g, std::size_t base, const VoxelGrid::Strides &s,
                                                      float value)
     {
+        const Ends ends = extremes(g, base, s);
+        return g.tree.resolve(ends.low, ends.high, value);
+    }
+
+    // The labels of a lowest and a highest corner of the cell at `base`:
+    // a sample of any value in it resolves from them (LabelTree::resolve).
+    struct Ends {
+        uint32_t low, high;
+    };
+    static Ends extremes(const VoxelGrid &g, std::size_t base, const VoxelGrid::Strides &s)
+    {
         const float *v = g.value.data() + base;
         int64_t low = 0, high = 0;
         for (int m = 1; m < 8; ++m) {
@@ -91,8 +102,7 @@ struct Cell {
             if (v[at] > v[high])
                 high = at;
         }
-        return g.tree.resolve(g.label[base + static_cast<std::size_t>(low)],
-                              g.label[base + static_cast<std::size_t>(high)], value);
+        return {g.label[base + static_cast<std::size_t>(low)], g.label[base + static_cast<std::size_t>(high)]};
     }
 };
 

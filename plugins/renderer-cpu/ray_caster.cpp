@@ -414,9 +414,12 @@ private:
                     __builtin_prefetch(value + row);
                 // Surface words only where a sample shows: two rows of four
                 // (all four cost more on the many that do not).
-                if constexpr (kGradient == Gradient::Voxel || kGradient == Gradient::Sample) {
+                if constexpr (kGradient == Gradient::Voxel) {
                     __builtin_prefetch(surface);
                     __builtin_prefetch(surface + dk + dj);
+                } else if constexpr (kGradient == Gradient::Sample) {
+                    for (const int64_t row : {int64_t{0}, dj, dk, dk + dj})
+                        __builtin_prefetch(surface + row);
                 }
                 if (labelled)
                     g.label.prefetch(cell);
@@ -516,6 +519,9 @@ private:
         const VoxelGrid &g = *pass.grid;
         bool any = false;
         uint32_t first = 0;
+        // The samples mostly share a cell: its extreme corners once.
+        std::size_t seen = ~std::size_t{0};
+        Cell::Ends ends{0, 0};
         for (int m = 0; m < kRefine; ++m) {
             const SubSample s = sub_sample(pass, o, d, t, m, along);
             if (s.t < t0 || s.t > t1)
@@ -524,8 +530,12 @@ private:
             const uint32_t word = g.label.word(base);
             uint32_t label = word >> 1;
             if (word & 1u) {
+                if (base != seen) {
+                    ends = Cell::extremes(g, base, along.strides);
+                    seen = base;
+                }
                 const Cell cell(g, base, along.strides, s.f[0], s.f[1], s.f[2]);
-                label = Cell::resolved_label(g, base, along.strides, cell.value());
+                label = g.tree.resolve(ends.low, ends.high, cell.value());
             }
             if (any && label != first)
                 return true;
