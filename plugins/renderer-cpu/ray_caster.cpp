@@ -10,8 +10,10 @@
 // regions of a frame, a coarse pass for interaction (a ray per n x n
 // pixels, n chosen to reach a frame rate, interpolated, at twice the step),
 // supersampling while idle; tiles of rows on a persistent oneTBB pool,
-// cancellable within a tile.  On
-// large volumes each ray prefetches the voxels a few samples ahead of it.
+// cancellable within a tile.  On large volumes each ray prefetches the
+// voxels a few samples ahead of it.  The sample loop is compiled once per
+// kind of labels and gradient, so that a plain frame does not carry what a
+// shaded, labelled one needs.
 // What a new set of transfer functions costs is O(blocks) (block statistics
 // are built per volume and labels revision) plus the boundary-emphasis
 // reference (a sample of voxels).
@@ -184,7 +186,7 @@ private:
         double step = 1.0;
         const float *background = nullptr;
         uint32_t sample_index = 0; // supersampling: which offset within the pixel
-        // The loop for this grid and these settings (cast<kLabels, kSurfaces>).
+        // The loop for this grid and these settings (cast<kLabels, kGradient>).
         Sample (RayCaster::*cast)(const Pass &, double, double, double, double *) const = nullptr;
     };
 
@@ -255,8 +257,9 @@ private:
                         return;
                     for (uint32_t x = 0; x < out.width; ++x) {
                         const uint32_t fx = request.region_x + x, fy = request.region_y + y;
-                        const Sample s = (this->*pass.cast)(pass, fx + offset[0], fy + offset[1], ray_offset(pass.jitter, pass.sample_index, fx, fy),
-                                              mine.data());
+                        const Sample s = (this->*pass.cast)(pass, fx + offset[0], fy + offset[1],
+                                                            ray_offset(pass.jitter, pass.sample_index, fx, fy),
+                                                            mine.data());
                         float *px = out.rgba + static_cast<int64_t>(y) * out.row_stride + 4 * static_cast<int64_t>(x);
                         if (pass.sample_index) {
                             for (int c = 0; c < 4; ++c)
@@ -297,8 +300,9 @@ private:
                     const double px = lattice.x(m), py = lattice.y(n);
                     rays[static_cast<std::size_t>(n * w + m)] =
                         (this->*pass.cast)(pass, px, py,
-                             ray_offset(pass.jitter, 0, static_cast<uint32_t>(px), static_cast<uint32_t>(py)),
-                             mine.data());
+                                           ray_offset(pass.jitter, 0, static_cast<uint32_t>(px),
+                                                      static_cast<uint32_t>(py)),
+                                           mine.data());
                 }
             }
         });
@@ -308,9 +312,6 @@ private:
         lattice.interpolate(rays, out);
     }
 
-    // The ray through frame position (px, py), its first sample `offset` of
-    // a step past the lattice.  `visibility`: per label, what this ray's
-    // samples of it contribute (T * alpha) is added.
     // Where a sample's gradient comes from: none needed (neither shading
     // nor boundary emphasis), its nearest voxel's, the voxels' trilinear
     // (SampleGradient), the field's own (FieldGradient, thick slices).
@@ -338,6 +339,10 @@ private:
         return g.label.empty() ? loop_for<false>(gradient) : loop_for<true>(gradient);
     }
 
+    // The ray through frame position (px, py), its first sample `offset` of
+    // a step past the lattice.  `visibility`: per label, what this ray's
+    // samples of it contribute (T * alpha) is added.
+    //
     // kLabels: the grid has labels; kGradient: where a sample's gradient
     // comes from.  A loop compiled for each: with everything in one, the
     // transparent samples of a plain frame paid for the registers that
@@ -412,8 +417,10 @@ private:
                 const Surface *surface = g.surface.data() + cell;
                 for (const int64_t row : {int64_t{0}, dj, dk, dk + dj})
                     __builtin_prefetch(value + row);
-                // Surface words only where a sample shows: two rows of four
-                // (all four cost more on the many that do not).
+                // Gradient words where a sample's gradient reads them: its
+                // nearest voxel's, in two rows of the four (all four cost
+                // more on the many samples that do not show); all four rows
+                // for the trilinear gradient.
                 if constexpr (kGradient == Gradient::Voxel) {
                     __builtin_prefetch(surface);
                     __builtin_prefetch(surface + dk + dj);
@@ -434,8 +441,9 @@ private:
                     steps += static_cast<float>((t - t0) / step) - 0.5f;
                 if (leaves_face && t + step > t1)
                     steps += static_cast<float>((t1 - t) / step) - 0.5f;
-                integrate<kLabels, kGradient>(pass, table, i, j, k, static_cast<float>(px - i), static_cast<float>(py - j),
-                          static_cast<float>(pz - k), steps, t, along, gathered);
+                integrate<kLabels, kGradient>(pass, table, i, j, k, static_cast<float>(px - i),
+                                              static_cast<float>(py - j), static_cast<float>(pz - k), steps, t, along,
+                                              gathered);
             }
             t += step;
         }
@@ -555,8 +563,8 @@ private:
             const SubSample s = sub_sample(pass, o, d, t, m, along);
             if (s.t < t0 || s.t > t1)
                 continue;
-            integrate<true, kGradient>(pass, *pass.refined, s.c[0], s.c[1], s.c[2], s.f[0], s.f[1], s.f[2], 1.0f, s.t, along,
-                      gathered);
+            integrate<true, kGradient>(pass, *pass.refined, s.c[0], s.c[1], s.c[2], s.f[0], s.f[1], s.f[2], 1.0f, s.t,
+                                       along, gathered);
         }
         return gathered;
     }
@@ -610,7 +618,8 @@ private:
             gradient = surface.gradient;
         }
         constexpr bool kSurfaces = kGradient != Gradient::None;
-        float m = kSurfaces && boundaries_.active() ? boundaries_.factor(static_cast<uint8_t>(gradient + 0.5f)) : 1.0f;
+        float m =
+            kSurfaces && boundaries_.active() ? boundaries_.factor(static_cast<uint8_t>(gradient + 0.5f)) : 1.0f;
         if (steps != 1.0f) {
             const float a = colour[3] * m;
             m *= a < 1.0f ? (1.0f - std::pow(1.0f - a, steps)) / a : 1.0f;
