@@ -2,7 +2,8 @@
 // in: the trilinear value of its eight corners, its label resolved by that
 // value when the corners' labels differ (LabelTree), and the gradient at
 // the sample (trilinear between the corners' gradients, or on thick slices
-// the field's own), for shading and boundary emphasis.  The labels and
+// the field's own, as resampled to isotropic voxels along the slice axis),
+// for shading and boundary emphasis.  The labels and
 // gradients of the sample's position, not of its nearest voxel: surfaces
 // and boundaries between structures come out smooth instead of as
 // terraces and walls of voxel cubes.  The GLSL ray caster computes the
@@ -212,30 +213,46 @@ private:
     }
 };
 
-// The gradient of the trilinear field itself at the sample: the
-// derivative of what the sample reads, from its cell's eight values (no
-// further loads), taken to millimetres.  Along an axis of thick slices it
-// is the slope between the two slices around the sample, where a central
-// difference at the voxels would span two slice gaps and blur a thin
-// structure over both (VoxelGrid::thick_slices); on a grid of even
-// spacing it is facetted at the cells' faces, where SampleGradient is not.
-struct FieldGradient {
+// The gradient at a sample on thick slices.  Along the rows and columns it
+// is the trilinear field's own derivative, from the cell's eight values.
+// Along the slice axis the field's own derivative is the slope between the
+// two slices: constant through a slab and jumping at each slice, so that
+// shading draws every slab as a band; a central difference at the voxels
+// instead would span two slice gaps and blur a thin structure over both.
+// There it is what the volume resampled to isotropic voxels at its finest
+// spacing (trilinearly: the same continuous field) would give: the slope
+// in the slab's middle, going over linearly, within one fine spacing of a
+// slice, to the central difference at the slice.  Only a sample that near
+// a slice reads more than its cell: four values of the plane beyond it.
+// (The resampled volume's central differences along the rows and columns
+// as well brought the last two anisotropic-fidelity rows over 35 dB, but
+// cost the CT head's shaded frame 1.4-1.66x; tests/bench/README.md.)
+struct SliceGradient {
     float normal[3];
     float magnitude; // on Surface::gradient's 8-bit scale, [0, 255]
     float direction[3]; // normal = direction * inverse_length, as SampleGradient's
     float inverse_length;
 
-    [[gnu::always_inline]] FieldGradient(const VoxelGrid &g, const float inverse[9], const Cell &cell)
+    [[gnu::always_inline]] SliceGradient(const VoxelGrid &g, std::size_t base, const VoxelGrid::Strides &s,
+                                         const int64_t cell[3], const float inverse[9], const Cell &c)
     {
-        const float *c = cell.corner;
-        const float x = cell.fx, y = cell.fy, z = cell.fz, hx = 1.0f - x, hy = 1.0f - y, hz = 1.0f - z;
-        const float di = hz * (hy * (c[1] - c[0]) + y * (c[3] - c[2])) + z * (hy * (c[5] - c[4]) + y * (c[7] - c[6]));
-        const float dj = hz * (hx * (c[2] - c[0]) + x * (c[3] - c[1])) + z * (hx * (c[6] - c[4]) + x * (c[7] - c[5]));
-        const float dk = hy * (hx * (c[4] - c[0]) + x * (c[5] - c[1])) + y * (hx * (c[6] - c[2]) + x * (c[7] - c[3]));
+        const float *q = c.corner;
+        const float x = c.fx, y = c.fy, z = c.fz, hx = 1.0f - x, hy = 1.0f - y, hz = 1.0f - z;
+        float d[3];
+        d[0] = hz * (hy * (q[1] - q[0]) + y * (q[3] - q[2])) + z * (hy * (q[5] - q[4]) + y * (q[7] - q[6]));
+        d[1] = hz * (hx * (q[2] - q[0]) + x * (q[3] - q[1])) + z * (hx * (q[6] - q[4]) + x * (q[7] - q[5]));
+        const float *v = g.value.data() + base;
+        // Thick k (slices): inline; thick i or j: rare.
+        d[2] = g.resample_scale[2] > 1.0f ? along_slices(g, v, s, cell[2], c)
+                                          : hy * (hx * (q[4] - q[0]) + x * (q[5] - q[1])) +
+                                                y * (hx * (q[6] - q[2]) + x * (q[7] - q[3]));
+        for (int a = 0; a < 2; ++a)
+            if (g.resample_scale[a] > 1.0f)
+                d[a] = along(g, v, s, cell, c, a);
         // Index-space derivatives to LPS by the inverse transpose.
-        const float w[3] = {inverse[0] * di + inverse[3] * dj + inverse[6] * dk,
-                            inverse[1] * di + inverse[4] * dj + inverse[7] * dk,
-                            inverse[2] * di + inverse[5] * dj + inverse[8] * dk};
+        const float w[3] = {inverse[0] * d[0] + inverse[3] * d[1] + inverse[6] * d[2],
+                            inverse[1] * d[0] + inverse[4] * d[1] + inverse[7] * d[2],
+                            inverse[2] * d[0] + inverse[5] * d[1] + inverse[8] * d[2]};
         const float squared = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
         const float inverse_length = inverse_sqrt(squared), length = squared * inverse_length;
         const float unit = length > g.flat_gradient ? inverse_length : 0.0f;
@@ -245,6 +262,74 @@ struct FieldGradient {
             normal[a] = w[a] * unit;
         }
         magnitude = std::min(255.0f, length * g.gradient_scale);
+    }
+
+private:
+    // The derivative in index units along a thick axis a (resample_scale
+    // over 1), v the cell's lowest voxel.
+    [[gnu::noinline]] static float along(const VoxelGrid &g, const float *v, const VoxelGrid::Strides &s,
+                                         const int64_t cell[3], const Cell &c, int a)
+    {
+        const int64_t stride[3] = {s.i, s.j, s.k}, size[3] = {g.nx, g.ny, g.nz};
+        const float f[3] = {c.fx, c.fy, c.fz};
+        // Across axis a: axes b and e.
+        const int b = (a + 1) % 3, e = (a + 2) % 3;
+        const int64_t sa = stride[a], sb = stride[b], se = stride[e];
+        const float fb = f[b], fe = f[e], fa = f[a];
+        // The cell's two faces across a, and the planes of voxels one
+        // before and one after it, bilinear across a.
+        const auto face = [&](int side) {
+            const int m = side << a, mb = m | 1 << b, me = m | 1 << e;
+            const float low = c.corner[m] + fb * (c.corner[mb] - c.corner[m]);
+            const float high = c.corner[me] + fb * (c.corner[me | 1 << b] - c.corner[me]);
+            return low + fe * (high - low);
+        };
+        const auto plane = [&](int64_t at) {
+            const float *p = v + at;
+            const float low = p[0] + fb * (p[sb] - p[0]), high = p[se] + fb * (p[se + sb] - p[se]);
+            return low + fe * (high - low);
+        };
+        // The weights of the central differences at the two faces; the
+        // slope between them has the rest.
+        const float scale = g.resample_scale[a];
+        const float w0 = std::max(0.0f, 1.0f - fa * scale), w1 = std::max(0.0f, 1.0f - (1.0f - fa) * scale);
+        const float p0 = face(0), p1 = face(1);
+        float da = (1.0f - w0 - w1) * (p1 - p0);
+        // At the volume's faces the difference is one-sided, as the
+        // voxels' own (compute_normals).
+        if (w0 > 0.0f) {
+            const bool inner = cell[a] > 0;
+            da += w0 * (inner ? 0.5f * (p1 - plane(-sa)) : p1 - p0);
+        }
+        if (w1 > 0.0f) {
+            const bool inner = cell[a] + 2 < size[a];
+            da += w1 * (inner ? 0.5f * (plane(2 * sa) - p0) : p1 - p0);
+        }
+        return da;
+    }
+
+    // along(..., 2) inline, for the common case: thick slices along k.
+    [[gnu::always_inline]] static float along_slices(const VoxelGrid &g, const float *v, const VoxelGrid::Strides &s,
+                                                     int64_t k, const Cell &c)
+    {
+        const float fx = c.fx, fy = c.fy, fz = c.fz, scale = g.resample_scale[2];
+        const auto bilinear = [fx, fy](float a, float b, float e, float f) {
+            const float low = a + fx * (b - a), high = e + fx * (f - e);
+            return low + fy * (high - low);
+        };
+        const float *q = c.corner;
+        const float p0 = bilinear(q[0], q[1], q[2], q[3]), p1 = bilinear(q[4], q[5], q[6], q[7]);
+        const float w0 = std::max(0.0f, 1.0f - fz * scale), w1 = std::max(0.0f, 1.0f - (1.0f - fz) * scale);
+        float d = (1.0f - w0 - w1) * (p1 - p0);
+        if (w0 > 0.0f) {
+            const float *p = v - s.k;
+            d += w0 * (k > 0 ? 0.5f * (p1 - bilinear(p[0], p[s.i], p[s.j], p[s.j + s.i])) : p1 - p0);
+        }
+        if (w1 > 0.0f) {
+            const float *p = v + 2 * s.k;
+            d += w1 * (k + 2 < g.nz ? 0.5f * (bilinear(p[0], p[s.i], p[s.j], p[s.j + s.i]) - p0) : p1 - p0);
+        }
+        return d;
     }
 };
 

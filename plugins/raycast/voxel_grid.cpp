@@ -264,6 +264,9 @@ const VoxelGrid &VoxelGridCache::update(const arbor_volume &v, uint64_t volume_r
         g.origin = {v.origin[0], v.origin[1], v.origin[2]};
         g.min_spacing = std::min({v.spacing[0], v.spacing[1], v.spacing[2]});
         g.thick_slices = std::max({v.spacing[0], v.spacing[1], v.spacing[2]}) >= 2.0 * g.min_spacing;
+        for (int a = 0; a < 3; ++a)
+            g.resample_scale[a] =
+                v.spacing[a] >= 2.0 * g.min_spacing ? static_cast<float>(v.spacing[a] / g.min_spacing) : 1.0f;
         compute_normals(g, task);
         voxels_ = v.voxels;
         volume_revision_ = volume_revision;

@@ -314,8 +314,8 @@ private:
 
     // Where a sample's gradient comes from: none needed (neither shading
     // nor boundary emphasis), its nearest voxel's, the voxels' trilinear
-    // (SampleGradient), the field's own (FieldGradient, thick slices).
-    enum class Gradient { None, Voxel, Sample, Field };
+    // (SampleGradient), on thick slices the field's own (SliceGradient).
+    enum class Gradient { None, Voxel, Sample, Slices };
     using Loop = Sample (RayCaster::*)(const Pass &, double, double, double, double *) const;
 
     template <bool kLabels>
@@ -325,16 +325,16 @@ private:
         case Gradient::None: return &RayCaster::cast<kLabels, Gradient::None>;
         case Gradient::Voxel: return &RayCaster::cast<kLabels, Gradient::Voxel>;
         case Gradient::Sample: return &RayCaster::cast<kLabels, Gradient::Sample>;
-        case Gradient::Field: break;
+        case Gradient::Slices: break;
         }
-        return &RayCaster::cast<kLabels, Gradient::Field>;
+        return &RayCaster::cast<kLabels, Gradient::Slices>;
     }
 
     Loop loop_for(const VoxelGrid &g, const Shading &shading, bool sample_gradients) const
     {
         const Gradient gradient = !(shading.enabled || boundaries_.active()) ? Gradient::None
                                   : !sample_gradients                         ? Gradient::Voxel
-                                  : g.thick_slices                            ? Gradient::Field
+                                  : g.thick_slices                            ? Gradient::Slices
                                                                               : Gradient::Sample;
         return g.label.empty() ? loop_for<false>(gradient) : loop_for<true>(gradient);
     }
@@ -601,8 +601,9 @@ private:
             return;
         // The normal is v * unit (unit 0: no direction to shade by).
         float v[3] = {0, 0, 0}, unit = 0, gradient = 0; // unless shaded or emphasised
-        if constexpr (kGradient == Gradient::Field) {
-            const FieldGradient at_sample(g, along.inverse, cell);
+        if constexpr (kGradient == Gradient::Slices) {
+            const int64_t at[3] = {ci, cj, ck};
+            const SliceGradient at_sample(g, base, s, at, along.inverse, cell);
             v[0] = at_sample.direction[0], v[1] = at_sample.direction[1], v[2] = at_sample.direction[2];
             unit = at_sample.inverse_length;
             gradient = at_sample.magnitude;

@@ -295,7 +295,7 @@ private:
         if (s.textures.resolvable() && params().flag("sample-labels"))
             variant |= kResolve | (grid.coarse ? 0u : kRefined);
         if (params().flag("sample-gradients"))
-            variant |= kSmooth | (g.thick_slices ? kField : 0u);
+            variant |= kSmooth | (g.thick_slices ? kSlices : 0u);
         if (shading.enabled)
             variant |= kShaded;
         if (boundaries_.active())
@@ -426,6 +426,7 @@ private:
         glUniform1i(at("u_refined"), unit::refined);
         glUniform1f(at("u_gradient_scale"), g.gradient_scale);
         glUniform1f(at("u_flat_gradient"), g.flat_gradient);
+        glUniform3f(at("u_resample_scale"), g.resample_scale[0], g.resample_scale[1], g.resample_scale[2]);
         glUniform1f(at("u_occlusion_strength"), occlusion_strength_);
         glUniform3fv(at("u_occlusion_world"), raycast::LocalOcclusion::kDirections, occlusion_.world()[0].data());
         glUniform3fv(at("u_occlusion_step"), raycast::LocalOcclusion::kDirections, occlusion_.steps()[0].data());

@@ -1,8 +1,12 @@
 // test_cell_sample.cpp - the gradient a ray-caster sample reads from its
-// cell (plugins/raycast/cell_sample.hpp), four corners at a time with SSE2,
-// against the definition computed here in double precision one corner at a
-// time: the corners' gradients (unit direction x magnitude, the magnitude a
-// quarter up for the direction) weighted trilinearly.
+// cell (plugins/raycast/cell_sample.hpp).  SampleGradient, four corners at
+// a time with SSE2, against the definition computed here in double
+// precision one corner at a time: the corners' gradients (unit direction x
+// magnitude, the magnitude a quarter up for the direction) weighted
+// trilinearly.  SliceGradient, on thick slices: along a thick axis against
+// the volume actually resampled to isotropic voxels (central differences
+// there, interpolated trilinearly), along the others against the
+// trilinear field's own derivative.
 #include "cell_sample.hpp"
 
 #include <gtest/gtest.h>
@@ -13,6 +17,7 @@
 #include <random>
 
 using arbor::raycast::Cell;
+using arbor::raycast::SliceGradient;
 using arbor::raycast::SampleGradient;
 using arbor::raycast::Surface;
 using arbor::raycast::VoxelGrid;
@@ -118,4 +123,154 @@ TEST(SampleGradientSse, AVanishingGradientHasNoDirection)
     EXPECT_EQ(at.magnitude, 0.0f);
     for (const float n : at.normal)
         EXPECT_EQ(n, 0.0f);
+}
+
+namespace {
+
+// The gradient (per mm) at voxel position p of `g` (spacing `spacing`,
+// axis-aligned) computed the long way: along a thick axis (at least twice
+// the finest spacing), g resampled trilinearly to voxels of its finest
+// spacing, central differences at those voxels (one-sided at the faces, as
+// compute_normals), weighted trilinearly at p; along another axis the
+// derivative of g's trilinear field in the sample's cell (on a face, two
+// cells hold p: their derivatives differ).
+std::array<double, 3> resampled_gradient(const VoxelGrid &g, const std::array<double, 3> &spacing,
+                                         const int64_t sample_cell[3], const std::array<double, 3> &p)
+{
+    const double h = std::min({spacing[0], spacing[1], spacing[2]});
+    const int64_t size[3] = {g.nx, g.ny, g.nz};
+    std::array<int64_t, 3> factor{}, fine{};
+    for (int a = 0; a < 3; ++a) {
+        factor[a] = spacing[a] >= 2 * h ? std::llround(spacing[a] / h) : 1; // even below twice the finest
+        fine[a] = (size[a] - 1) * factor[a] + 1;
+    }
+    // The original field, trilinear, at fine voxel q.
+    const auto value = [&](std::array<int64_t, 3> q) {
+        int64_t c[3];
+        double f[3];
+        for (int a = 0; a < 3; ++a) {
+            q[a] = std::clamp<int64_t>(q[a], 0, fine[a] - 1);
+            c[a] = std::min(q[a] / factor[a], std::max<int64_t>(size[a] - 2, 0));
+            f[a] = static_cast<double>(q[a] - c[a] * factor[a]) / static_cast<double>(factor[a]);
+        }
+        double sum = 0;
+        for (int m = 0; m < 8; ++m) {
+            double w = 1;
+            int64_t at[3];
+            for (int a = 0; a < 3; ++a) {
+                const bool up = (m >> a) & 1;
+                w *= up ? f[a] : 1 - f[a];
+                at[a] = std::min(c[a] + (up ? 1 : 0), size[a] - 1);
+            }
+            sum += w * g.value[g.index(at[0], at[1], at[2])];
+        }
+        return sum;
+    };
+    // Central differences at fine voxel q, per mm.
+    const auto difference = [&](const std::array<int64_t, 3> &q, int a) {
+        std::array<int64_t, 3> lo = q, hi = q;
+        lo[a] = std::max<int64_t>(q[a] - 1, 0);
+        hi[a] = std::min(q[a] + 1, fine[a] - 1);
+        return (value(hi) - value(lo)) / (static_cast<double>(hi[a] - lo[a]) * h);
+    };
+    std::array<int64_t, 3> c{};
+    double f[3];
+    for (int a = 0; a < 3; ++a) {
+        const double x = p[a] * static_cast<double>(factor[a]);
+        c[a] = std::min(static_cast<int64_t>(x), fine[a] - 2);
+        f[a] = x - static_cast<double>(c[a]);
+    }
+    std::array<double, 3> sum{};
+    for (int m = 0; m < 8; ++m) {
+        double w = 1;
+        std::array<int64_t, 3> q{};
+        for (int a = 0; a < 3; ++a) {
+            const bool up = (m >> a) & 1;
+            w *= up ? f[a] : 1 - f[a];
+            q[a] = c[a] + (up ? 1 : 0);
+        }
+        for (int a = 0; a < 3; ++a)
+            sum[a] += w * difference(q, a);
+    }
+    // Along an even axis: the field's own derivative, a finite difference
+    // of the trilinear field across p's cell (exact: it is linear there).
+    for (int a = 0; a < 3; ++a) {
+        if (factor[a] != 1 || size[a] < 2)
+            continue;
+        const double cell = static_cast<double>(sample_cell[a]);
+        std::array<double, 3> low = p, high = p;
+        low[a] = cell;
+        high[a] = cell + 1;
+        const auto field = [&](const std::array<double, 3> &x) {
+            double sum = 0;
+            for (int m = 0; m < 8; ++m) {
+                double w = 1;
+                int64_t at[3];
+                for (int b = 0; b < 3; ++b) {
+                    const int64_t base = std::min(static_cast<int64_t>(x[b]), std::max<int64_t>(size[b] - 2, 0));
+                    const double fb = x[b] - static_cast<double>(base);
+                    const bool up = (m >> b) & 1;
+                    w *= up ? fb : 1 - fb;
+                    at[b] = std::min(base + (up ? 1 : 0), size[b] - 1);
+                }
+                sum += w * g.value[g.index(at[0], at[1], at[2])];
+            }
+            return sum;
+        };
+        sum[a] = (field(high) - field(low)) / spacing[a];
+    }
+    return sum;
+}
+
+void expect_resampled(const std::array<int64_t, 3> &size, const std::array<double, 3> &spacing, std::mt19937 &rng,
+                      int samples)
+{
+    VoxelGrid g = random_grid(size[0], size[1], size[2], rng);
+    const double h = std::min({spacing[0], spacing[1], spacing[2]});
+    for (int a = 0; a < 3; ++a)
+        g.resample_scale[a] = spacing[a] >= 2 * h ? static_cast<float>(spacing[a] / h) : 1.0f;
+    g.flat_gradient = 0;
+    g.gradient_scale = 1;
+    const float inverse[9] = {static_cast<float>(1 / spacing[0]), 0, 0, 0, static_cast<float>(1 / spacing[1]), 0,
+                              0, 0, static_cast<float>(1 / spacing[2])};
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int n = 0; n < samples; ++n) {
+        int64_t c[3];
+        float f[3];
+        for (int a = 0; a < 3; ++a) {
+            c[a] = std::uniform_int_distribution<int64_t>(0, size[a] - 2)(rng);
+            // Within a fine spacing of the slices (where the differences
+            // are blended) as often as between them.
+            const double u = unit(rng);
+            f[a] = static_cast<float>(u < 0.05 ? 0.0 : u > 0.95 ? 1.0 : unit(rng));
+        }
+        const std::size_t base = g.index(c[0], c[1], c[2]);
+        const Cell cell(g, base, g.strides(), f[0], f[1], f[2]);
+        const SliceGradient at(g, base, g.strides(), c, inverse, cell);
+        const std::array<double, 3> expected =
+            resampled_gradient(g, spacing, c, {c[0] + double{f[0]}, c[1] + double{f[1]}, c[2] + double{f[2]}});
+        for (int a = 0; a < 3; ++a)
+            ASSERT_NEAR(at.direction[a], expected[a], 1e-3 * (1 + std::fabs(expected[a])))
+                << "axis " << a << " cell " << c[0] << "," << c[1] << "," << c[2] << " at " << f[0] << "," << f[1]
+                << "," << f[2];
+    }
+}
+
+} // namespace
+
+TEST(SliceGradient, AlongThickSlicesIsTheGradientOfTheVolumeResampledToIsotropicVoxels)
+{
+    std::mt19937 rng(52);
+    expect_resampled({6, 5, 5}, {1.0, 1.0, 6.0}, rng, 3000);  // thick slices
+    expect_resampled({5, 6, 4}, {0.5, 0.5, 1.5}, rng, 3000);  // a ratio of 3
+    expect_resampled({4, 6, 5}, {3.0, 1.0, 1.0}, rng, 3000);  // the thick axis is i
+    expect_resampled({5, 4, 6}, {1.0, 2.0, 4.0}, rng, 3000);  // two thick axes
+    expect_resampled({2, 2, 2}, {1.0, 1.0, 5.0}, rng, 1000);  // one cell: one-sided everywhere
+}
+
+TEST(SliceGradient, OnEvenSpacingItIsTheTrilinearFieldsOwn)
+{
+    std::mt19937 rng(53);
+    expect_resampled({6, 5, 7}, {0.8, 0.8, 0.8}, rng, 3000);
+    expect_resampled({6, 5, 7}, {1.0, 1.2, 1.9}, rng, 3000); // under twice the finest: even
 }

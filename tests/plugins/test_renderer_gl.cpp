@@ -71,8 +71,8 @@ TEST(GlRayCaster, MatchesTheCpuRayCasterShadedWithBoundaryEmphasisAndJitter)
     EXPECT_LT(worst, 2.0) << "mm";
 }
 
-// Slices three times as far apart as the rows: both take the trilinear
-// field's own gradient at the sample.
+// Slices three times as far apart as the rows: both take the gradient as
+// on the volume resampled to isotropic voxels (IsotropicGradient).
 TEST(GlRayCaster, MatchesTheCpuRayCasterOnThickSlices)
 {
     Pair s({1.0, 1.0, 3.0});
