@@ -100,11 +100,12 @@ struct VoxelGrid {
     float gradient_scale = 1.0f, flat_gradient = 0.0f;
     // Slices at least twice as far apart as the finest spacing: a central
     // difference at the voxels would span two slice gaps, so a sample's
-    // gradient is the field's own (SliceGradient).
+    // gradient is the one it would have on the volume resampled to
+    // isotropic voxels (IsotropicGradient).
     bool thick_slices = false;
     // Per axis: this axis' spacing over the finest on an axis of thick
     // slices, else 1: how many voxels of the finest spacing a cell spans
-    // along it (SliceGradient).
+    // along it (IsotropicGradient).
     float resample_scale[3] = {1.0f, 1.0f, 1.0f};
 
     std::size_t index(int64_t i, int64_t j, int64_t k) const { return static_cast<std::size_t>(i + nx * (j + ny * k)); }

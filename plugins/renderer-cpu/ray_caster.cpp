@@ -314,8 +314,9 @@ private:
 
     // Where a sample's gradient comes from: none needed (neither shading
     // nor boundary emphasis), its nearest voxel's, the voxels' trilinear
-    // (SampleGradient), on thick slices the field's own (SliceGradient).
-    enum class Gradient { None, Voxel, Sample, Slices };
+    // (SampleGradient), on thick slices as on isotropic voxels
+    // (IsotropicGradient).
+    enum class Gradient { None, Voxel, Sample, Isotropic };
     using Loop = Sample (RayCaster::*)(const Pass &, double, double, double, double *) const;
 
     template <bool kLabels>
@@ -325,16 +326,16 @@ private:
         case Gradient::None: return &RayCaster::cast<kLabels, Gradient::None>;
         case Gradient::Voxel: return &RayCaster::cast<kLabels, Gradient::Voxel>;
         case Gradient::Sample: return &RayCaster::cast<kLabels, Gradient::Sample>;
-        case Gradient::Slices: break;
+        case Gradient::Isotropic: break;
         }
-        return &RayCaster::cast<kLabels, Gradient::Slices>;
+        return &RayCaster::cast<kLabels, Gradient::Isotropic>;
     }
 
     Loop loop_for(const VoxelGrid &g, const Shading &shading, bool sample_gradients) const
     {
         const Gradient gradient = !(shading.enabled || boundaries_.active()) ? Gradient::None
                                   : !sample_gradients                         ? Gradient::Voxel
-                                  : g.thick_slices                            ? Gradient::Slices
+                                  : g.thick_slices                            ? Gradient::Isotropic
                                                                               : Gradient::Sample;
         return g.label.empty() ? loop_for<false>(gradient) : loop_for<true>(gradient);
     }
@@ -427,6 +428,10 @@ private:
                 } else if constexpr (kGradient == Gradient::Sample) {
                     for (const int64_t row : {int64_t{0}, dj, dk, dk + dj})
                         __builtin_prefetch(surface + row);
+                } else if constexpr (kGradient == Gradient::Isotropic) {
+                    // The rows before and after the cell's, in both slices.
+                    for (const int64_t row : {-dj, 2 * dj, dk - dj, dk + 2 * dj})
+                        __builtin_prefetch(value + row);
                 }
                 if (labelled)
                     g.label.prefetch(cell);
@@ -601,9 +606,9 @@ private:
             return;
         // The normal is v * unit (unit 0: no direction to shade by).
         float v[3] = {0, 0, 0}, unit = 0, gradient = 0; // unless shaded or emphasised
-        if constexpr (kGradient == Gradient::Slices) {
+        if constexpr (kGradient == Gradient::Isotropic) {
             const int64_t at[3] = {ci, cj, ck};
-            const SliceGradient at_sample(g, base, s, at, along.inverse, cell);
+            const IsotropicGradient at_sample(g, base, s, at, along.inverse, cell);
             v[0] = at_sample.direction[0], v[1] = at_sample.direction[1], v[2] = at_sample.direction[2];
             unit = at_sample.inverse_length;
             gradient = at_sample.magnitude;

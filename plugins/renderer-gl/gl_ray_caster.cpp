@@ -295,7 +295,7 @@ private:
         if (s.textures.resolvable() && params().flag("sample-labels"))
             variant |= kResolve | (grid.coarse ? 0u : kRefined);
         if (params().flag("sample-gradients"))
-            variant |= kSmooth | (g.thick_slices ? kSlices : 0u);
+            variant |= kSmooth | (g.thick_slices ? kIsotropic : 0u);
         if (shading.enabled)
             variant |= kShaded;
         if (boundaries_.active())

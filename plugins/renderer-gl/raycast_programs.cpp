@@ -92,7 +92,7 @@ GLuint RaycastPrograms::get(unsigned variant)
     const std::pair<unsigned, const char *> defines[] = {
         {kLabelled, "LABELLED"}, {kShaded, "SHADED"}, {kBoundary, "BOUNDARY"},
         {kJitter, "JITTER"},     {kVisibility, "VISIBILITY"}, {kOcclusion, "OCCLUSION"},
-        {kResolve, "RESOLVE"},   {kSmooth, "SMOOTH"},         {kSlices, "SLICES"},
+        {kResolve, "RESOLVE"},   {kSmooth, "SMOOTH"},         {kIsotropic, "ISOTROPIC"},
         {kRefined, "REFINE"}};
     for (const auto &[bit, name] : defines)
         if (variant & bit)

@@ -21,7 +21,7 @@ enum Variant : unsigned {
     kOcclusion = 1u << 5,
     kResolve = 1u << 6, // labels per sample
     kSmooth = 1u << 7,  // gradients per sample
-    kSlices = 1u << 8,  // on thick slices: the field's own gradient (SliceGradient)
+    kIsotropic = 1u << 8, // on thick slices: the gradient as on isotropic voxels
     kRefined = 1u << 9, // a step in a mixed cell as four samples (not coarse)
 };
 

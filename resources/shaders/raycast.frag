@@ -17,9 +17,9 @@
 // four samples; else the nearest
 // voxel's label), SMOOTH (the gradient
 // at the sample, trilinear between the voxels', as
-// plugins/raycast/cell_sample.hpp, or with SLICES on thick slices the
-// trilinear field's own, along the slice axis as resampled to isotropic
-// voxels; else the nearest voxel's), SHADED,
+// plugins/raycast/cell_sample.hpp, or with ISOTROPIC on thick slices
+// as on the volume resampled to isotropic voxels; else the nearest
+// voxel's), SHADED,
 // BOUNDARY, JITTER, OCCLUSION (local ambient occlusion darkens the lit
 // colour, plugins/raycast/local_occlusion.hpp), and VISIBILITY (instead of
 // colour: what each of 32 labels from u_visibility_base contributes,
@@ -196,7 +196,7 @@ float occlusion_visibility(vec3 p, vec3 n, float jitter)
 }
 #endif
 
-#ifdef SLICES
+#ifdef ISOTROPIC
 uniform float u_gradient_scale, u_flat_gradient; // per mm -> the 8-bit scale; flat below
 uniform vec3 u_resample_scale; // per axis: its spacing over the finest on thick slices, else 1
 
@@ -212,29 +212,19 @@ float plane_value(ivec3 at, int a, ivec3 wide, vec3 f)
     return mix(mix(p00, p10, f[b]), mix(p01, p11, f[b]), f[e]);
 }
 
-// The gradient on thick slices (SliceGradient): the trilinear field's own,
-// but along a thick axis what the volume resampled to isotropic voxels
-// gives: within one fine spacing of a slice it goes over to the central
-// difference there.  xyz its unit direction in mm (0 where flat), w its
+// The gradient on thick slices (IsotropicGradient): the one the voxels'
+// central differences give on the volume resampled to isotropic voxels at
+// its finest spacing.  xyz its unit direction in mm (0 where flat), w its
 // magnitude on the 8-bit scale.
-vec4 slice_gradient(ivec3 c, ivec3 wide, vec3 f)
+vec4 isotropic_gradient(ivec3 c, ivec3 wide, vec3 f)
 {
-    float v[8];
-    for (int m = 0; m < 8; ++m)
-        v[m] = texelFetch(u_values, corner(c, m, wide), 0).r;
     vec3 d;
     for (int a = 0; a < 3; ++a) {
         ivec3 along = ivec3(0);
         along[a] = wide[a];
-        // The cell's two faces across a, bilinear.
-        int b = (a + 1) % 3, e = (a + 2) % 3, mb = 1 << b, me = 1 << e, m1 = 1 << a;
-        float p0 = mix(mix(v[0], v[mb], f[b]), mix(v[me], v[me | mb], f[b]), f[e]);
-        float p1 = mix(mix(v[m1], v[m1 | mb], f[b]), mix(v[m1 | me], v[m1 | me | mb], f[b]), f[e]);
-        float w0 = 0.0, w1 = 0.0;
-        if (u_resample_scale[a] > 1.0) {
-            w0 = max(0.0, 1.0 - f[a] * u_resample_scale[a]);
-            w1 = max(0.0, 1.0 - (1.0 - f[a]) * u_resample_scale[a]);
-        }
+        float w0 = max(0.0, 1.0 - f[a] * u_resample_scale[a]);
+        float w1 = max(0.0, 1.0 - (1.0 - f[a]) * u_resample_scale[a]);
+        float p0 = plane_value(c, a, wide, f), p1 = plane_value(c + along, a, wide, f);
         float da = (1.0 - w0 - w1) * (p1 - p0);
         if (w0 > 0.0)
             da += w0 * (c[a] > 0 ? 0.5 * (p1 - plane_value(c - along, a, wide, f)) : p1 - p0);
@@ -330,8 +320,8 @@ void integrate(vec3 x, float t, float steps, bool refined)
     if (!(s.a > 0.0))
         return;
 #if defined(SHADED) || defined(BOUNDARY)
-#if defined(SMOOTH) && defined(SLICES)
-    vec4 gradient = slice_gradient(c, g_wide, f);
+#if defined(SMOOTH) && defined(ISOTROPIC)
+    vec4 gradient = isotropic_gradient(c, g_wide, f);
     vec3 n = gradient.xyz;
     float magnitude = gradient.w;
 #elif defined(SMOOTH)

@@ -3,10 +3,9 @@
 // a time with SSE2, against the definition computed here in double
 // precision one corner at a time: the corners' gradients (unit direction x
 // magnitude, the magnitude a quarter up for the direction) weighted
-// trilinearly.  SliceGradient, on thick slices: along a thick axis against
-// the volume actually resampled to isotropic voxels (central differences
-// there, interpolated trilinearly), along the others against the
-// trilinear field's own derivative.
+// trilinearly.  IsotropicGradient, on thick slices, against the volume
+// actually resampled to isotropic voxels: central differences there,
+// interpolated trilinearly.
 #include "cell_sample.hpp"
 
 #include <gtest/gtest.h>
@@ -17,7 +16,7 @@
 #include <random>
 
 using arbor::raycast::Cell;
-using arbor::raycast::SliceGradient;
+using arbor::raycast::IsotropicGradient;
 using arbor::raycast::SampleGradient;
 using arbor::raycast::Surface;
 using arbor::raycast::VoxelGrid;
@@ -128,14 +127,11 @@ TEST(SampleGradientSse, AVanishingGradientHasNoDirection)
 namespace {
 
 // The gradient (per mm) at voxel position p of `g` (spacing `spacing`,
-// axis-aligned) computed the long way: along a thick axis (at least twice
-// the finest spacing), g resampled trilinearly to voxels of its finest
-// spacing, central differences at those voxels (one-sided at the faces, as
-// compute_normals), weighted trilinearly at p; along another axis the
-// derivative of g's trilinear field in the sample's cell (on a face, two
-// cells hold p: their derivatives differ).
+// axis-aligned) computed the long way: g resampled trilinearly to voxels
+// of its finest spacing, central differences at those voxels (one-sided at
+// the faces, as compute_normals), weighted trilinearly at p.
 std::array<double, 3> resampled_gradient(const VoxelGrid &g, const std::array<double, 3> &spacing,
-                                         const int64_t sample_cell[3], const std::array<double, 3> &p)
+                                         const std::array<double, 3> &p)
 {
     const double h = std::min({spacing[0], spacing[1], spacing[2]});
     const int64_t size[3] = {g.nx, g.ny, g.nz};
@@ -171,7 +167,8 @@ std::array<double, 3> resampled_gradient(const VoxelGrid &g, const std::array<do
         std::array<int64_t, 3> lo = q, hi = q;
         lo[a] = std::max<int64_t>(q[a] - 1, 0);
         hi[a] = std::min(q[a] + 1, fine[a] - 1);
-        return (value(hi) - value(lo)) / (static_cast<double>(hi[a] - lo[a]) * h);
+        const double fine_spacing = spacing[a] / static_cast<double>(factor[a]);
+        return (value(hi) - value(lo)) / (static_cast<double>(hi[a] - lo[a]) * fine_spacing);
     };
     std::array<int64_t, 3> c{};
     double f[3];
@@ -191,33 +188,6 @@ std::array<double, 3> resampled_gradient(const VoxelGrid &g, const std::array<do
         }
         for (int a = 0; a < 3; ++a)
             sum[a] += w * difference(q, a);
-    }
-    // Along an even axis: the field's own derivative, a finite difference
-    // of the trilinear field across p's cell (exact: it is linear there).
-    for (int a = 0; a < 3; ++a) {
-        if (factor[a] != 1 || size[a] < 2)
-            continue;
-        const double cell = static_cast<double>(sample_cell[a]);
-        std::array<double, 3> low = p, high = p;
-        low[a] = cell;
-        high[a] = cell + 1;
-        const auto field = [&](const std::array<double, 3> &x) {
-            double sum = 0;
-            for (int m = 0; m < 8; ++m) {
-                double w = 1;
-                int64_t at[3];
-                for (int b = 0; b < 3; ++b) {
-                    const int64_t base = std::min(static_cast<int64_t>(x[b]), std::max<int64_t>(size[b] - 2, 0));
-                    const double fb = x[b] - static_cast<double>(base);
-                    const bool up = (m >> b) & 1;
-                    w *= up ? fb : 1 - fb;
-                    at[b] = std::min(base + (up ? 1 : 0), size[b] - 1);
-                }
-                sum += w * g.value[g.index(at[0], at[1], at[2])];
-            }
-            return sum;
-        };
-        sum[a] = (field(high) - field(low)) / spacing[a];
     }
     return sum;
 }
@@ -246,9 +216,9 @@ void expect_resampled(const std::array<int64_t, 3> &size, const std::array<doubl
         }
         const std::size_t base = g.index(c[0], c[1], c[2]);
         const Cell cell(g, base, g.strides(), f[0], f[1], f[2]);
-        const SliceGradient at(g, base, g.strides(), c, inverse, cell);
+        const IsotropicGradient at(g, base, g.strides(), c, inverse, cell);
         const std::array<double, 3> expected =
-            resampled_gradient(g, spacing, c, {c[0] + double{f[0]}, c[1] + double{f[1]}, c[2] + double{f[2]}});
+            resampled_gradient(g, spacing, {c[0] + double{f[0]}, c[1] + double{f[1]}, c[2] + double{f[2]}});
         for (int a = 0; a < 3; ++a)
             ASSERT_NEAR(at.direction[a], expected[a], 1e-3 * (1 + std::fabs(expected[a])))
                 << "axis " << a << " cell " << c[0] << "," << c[1] << "," << c[2] << " at " << f[0] << "," << f[1]
@@ -258,7 +228,7 @@ void expect_resampled(const std::array<int64_t, 3> &size, const std::array<doubl
 
 } // namespace
 
-TEST(SliceGradient, AlongThickSlicesIsTheGradientOfTheVolumeResampledToIsotropicVoxels)
+TEST(IsotropicGradient, IsTheGradientOfTheVolumeResampledToIsotropicVoxels)
 {
     std::mt19937 rng(52);
     expect_resampled({6, 5, 5}, {1.0, 1.0, 6.0}, rng, 3000);  // thick slices
@@ -268,7 +238,7 @@ TEST(SliceGradient, AlongThickSlicesIsTheGradientOfTheVolumeResampledToIsotropic
     expect_resampled({2, 2, 2}, {1.0, 1.0, 5.0}, rng, 1000);  // one cell: one-sided everywhere
 }
 
-TEST(SliceGradient, OnEvenSpacingItIsTheTrilinearFieldsOwn)
+TEST(IsotropicGradient, OnEvenAxesItIsTheVoxelsCentralDifferencesWeighedTrilinearly)
 {
     std::mt19937 rng(53);
     expect_resampled({6, 5, 7}, {0.8, 0.8, 0.8}, rng, 3000);
