@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 
 namespace arbor::raycast {
 
@@ -25,7 +26,7 @@ void ClassTable::build(const arbor_tf_set &tf, double step_mm)
     for (uint32_t b = 0; b < tf.branch_count; ++b) {
         const double lo = tf.domain[2 * b], hi = tf.domain[2 * b + 1];
         range_[b] = {static_cast<float>(lo), hi > lo ? static_cast<float>((size_ - 1) / (hi - lo)) : 0.0f,
-                     static_cast<float>(size_ - 1)};
+                     static_cast<float>(size_ - 1), 0.0f, 0.0f};
         for (uint32_t i = 0; i < size_; ++i) {
             const float *in = tf.lut + (static_cast<std::size_t>(b) * size_ + i) * 4;
             float *out = &rgba_[(static_cast<std::size_t>(b) * size_ + i) * 4];
@@ -33,6 +34,27 @@ void ClassTable::build(const arbor_tf_set &tf, double step_mm)
             for (int c = 0; c < 3; ++c)
                 out[c] = static_cast<float>(std::clamp(static_cast<double>(in[c]), 0.0, 1.0) * a);
             out[3] = static_cast<float>(a);
+        }
+    }
+    // Entry e is read for (value - low) * scale in [e - 0.5, e + 0.5), so
+    // the entries that show are read within [first - 0.5, last + 0.5];
+    // widened by a hundredth of an entry (lookup's float arithmetic is off
+    // by far less), unbounded where the first or last entry shows (the
+    // clamp reads them beyond).
+    constexpr float kInfinity = std::numeric_limits<float>::infinity(), kMargin = 0.01f;
+    for (uint32_t b = 0; b < tf.branch_count; ++b) {
+        const float *rgba = &rgba_[static_cast<std::size_t>(b) * size_ * 4];
+        uint32_t first = 0, end = size_;
+        while (first < size_ && !(rgba[4 * first + 3] > 0.0f))
+            ++first;
+        while (end > first && !(rgba[4 * (end - 1) + 3] > 0.0f))
+            --end;
+        Range &r = range_[b];
+        if (first == end) {
+            r.shown_low = kInfinity, r.shown_high = -kInfinity;
+        } else {
+            r.shown_low = first == 0 ? -kInfinity : static_cast<float>(first) - 0.5f - kMargin;
+            r.shown_high = end == size_ ? kInfinity : static_cast<float>(end - 1) + 0.5f + kMargin;
         }
     }
     // Level l holds the largest opacity of entries [i, i + 2^l).

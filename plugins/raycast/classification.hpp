@@ -10,6 +10,7 @@
 
 #include <arbor/transfer_function.h>
 
+#include <algorithm>
 #include <array>
 
 namespace arbor::raycast {
@@ -23,12 +24,17 @@ public:
     void build(const arbor_tf_set &tf, double step_mm);
 
     // Premultiplied RGBA of a sample of `value` in `label`.
-    const float *lookup(uint32_t label, float value) const
+    const float *lookup(uint32_t label, float value) const { return entry(label, (value - range_[label].low) * range_[label].scale); }
+    // The same, or nullptr where the sample is certainly transparent: its
+    // entry lies before the label's first entry of nonzero opacity or after
+    // its last (and NaN).  Most samples in the blocks a ray does not skip
+    // are transparent (64 % on walnut); for them, two comparisons replace
+    // the clamp, the rounding and the load.
+    const float *lookup_shown(uint32_t label, float value) const
     {
         const Range &r = range_[label];
-        float x = (value - r.low) * r.scale;
-        x = x < 0.0f ? 0.0f : (x > r.last ? r.last : x);
-        return &rgba_[(static_cast<std::size_t>(label) * size_ + static_cast<uint32_t>(x + 0.5f)) * 4];
+        const float x = (value - r.low) * r.scale;
+        return x >= r.shown_low && x <= r.shown_high ? entry(label, x) : nullptr;
     }
     // Largest opacity of `label` over values in [lo, hi].
     float max_alpha(uint32_t label, float lo, float hi) const;
@@ -36,9 +42,12 @@ public:
 
     // The tables as lookup() reads them: entries per label, the
     // premultiplied RGBA rows (label after label), and each label's map
-    // from value to entry, clamp((value - low) * scale, 0, last).
+    // from value to entry, clamp((value - low) * scale, 0, last), rounded;
+    // the entries of nonzero opacity are those of (value - low) * scale in
+    // [shown_low, shown_high] (empty: low > high).
     struct Range {
         float low, scale, last;
+        float shown_low, shown_high;
     };
     uint32_t entries() const { return size_; }
     double step() const { return step_; } // mm between the samples it is for
@@ -46,6 +55,12 @@ public:
     const Range &range(uint32_t label) const { return range_[label]; }
 
 private:
+    const float *entry(uint32_t label, float x) const
+    {
+        x = std::min(std::max(0.0f, x), range_[label].last); // NaN: entry 0
+        return &rgba_[(static_cast<std::size_t>(label) * size_ + static_cast<uint32_t>(x + 0.5f)) * 4];
+    }
+
     uint32_t size_ = 0, levels_ = 0;
     double step_ = 1.0;
     std::vector<Range> range_;

@@ -384,6 +384,9 @@ private:
         const double offset = offset_fraction * step;
         double t = std::ceil((t0 - offset) / step) * step + offset;
         const double first = t;
+        // The samples that stand for part of a step (one test per sample).
+        const double partial_first = enters_face ? first : -std::numeric_limits<double>::infinity();
+        const double partial_from = leaves_face ? t1 - step : std::numeric_limits<double>::infinity();
         const int64_t last_i = along.last[0], last_j = along.last[1], last_k = along.last[2];
         const bool labelled = kLabels && along.labelled;
         // Where structures meet, a structure thinner than a step (a thin
@@ -442,10 +445,12 @@ private:
                 // A sample stands for the step around it; at a face, for
                 // the part of it inside.
                 float steps = 1.0f;
-                if (enters_face && t == first)
-                    steps += static_cast<float>((t - t0) / step) - 0.5f;
-                if (leaves_face && t + step > t1)
-                    steps += static_cast<float>((t1 - t) / step) - 0.5f;
+                if (t == partial_first || t > partial_from) [[unlikely]] {
+                    if (enters_face && t == first)
+                        steps += static_cast<float>((t - t0) / step) - 0.5f;
+                    if (leaves_face && t + step > t1)
+                        steps += static_cast<float>((t1 - t) / step) - 0.5f;
+                }
                 integrate<kLabels, kGradient>(pass, table, i, j, k, static_cast<float>(px - i),
                                               static_cast<float>(py - j), static_cast<float>(pz - k), steps, t, along,
                                               gathered);
@@ -601,8 +606,8 @@ private:
                 label = g.label[nearest];
             }
         }
-        const float *colour = table.lookup(label, value);
-        if (!(colour[3] > 0.0f))
+        const float *colour = table.lookup_shown(label, value);
+        if (!colour || !(colour[3] > 0.0f))
             return;
         // The normal is v * unit (unit 0: no direction to shade by).
         float v[3] = {0, 0, 0}, unit = 0, gradient = 0; // unless shaded or emphasised
