@@ -356,13 +356,16 @@ private:
         const ClassTable &table = *pass.table;
         const Occupancy &occupancy = *pass.occupancy;
         const float termination = pass.termination;
-        const double step = pass.step;
+        const double step = pass.step, per_step = 1.0 / step;
         const float *background = pass.background;
         const Ray ray = pass.camera->ray(px_frame, py_frame);
         // The ray in voxel index space.
         const Vec3 o = mul(g.to_voxel, {ray.origin[0] - g.origin[0], ray.origin[1] - g.origin[1],
                                         ray.origin[2] - g.origin[2]});
         const Vec3 d = mul(g.to_voxel, ray.direction); // voxels per mm
+        Vec3 per; // 1 / d, for skips
+        for (int a = 0; a < 3; ++a)
+            per[a] = std::fabs(d[a]) < 1e-12 ? 0.0 : 1.0 / d[a];
         // Clipped to the box around the blocks that can be visible at all.
         const auto [t0, t1] = chord(o, d, occupancy.content_low(), occupancy.content_high());
         // Where it enters and leaves through the volume's own faces (the
@@ -406,7 +409,7 @@ private:
             const int64_t j = std::min(static_cast<int64_t>(py), last_j);
             const int64_t k = std::min(static_cast<int64_t>(pz), last_k);
             if (occupancy.empty(i >> 3, j >> 3, k >> 3)) { // kBlock = 8
-                t = skip_block(o, d, t, step, offset, i, j, k);
+                t = skip_block(o, per, t, step, per_step, offset, i, j, k);
                 continue;
             }
             if (prefetch) {
@@ -694,20 +697,28 @@ private:
 
     // The first position of the ray's own (offset) lattice past the block
     // holding cell (i, j, k): skipping keeps each ray's jitter.
-    static double skip_block(const Vec3 &o, const Vec3 &d, double t, double step, double offset, int64_t i, int64_t j,
-                             int64_t k)
+    // Multiplications by the ray's inverse direction and step, not
+    // divisions: a skip lies on the chain from sample to sample (the next
+    // position waits for it), and three divisions and a fourth made it
+    // several samples long.  `per` holds 1 / d (0 where the ray runs along
+    // the axis's planes), per_step 1 / step.
+    static double skip_block(const Vec3 &o, const Vec3 &per, double t, double step, double per_step, double offset,
+                             int64_t i, int64_t j, int64_t k)
     {
         const int64_t cell[3] = {i, j, k};
         double exit = std::numeric_limits<double>::infinity();
         for (int a = 0; a < 3; ++a) {
-            if (std::fabs(d[a]) < 1e-12)
+            if (per[a] == 0.0)
                 continue;
             const int64_t b = cell[a] / Occupancy::kBlock;
-            const double bound = d[a] > 0 ? static_cast<double>((b + 1) * Occupancy::kBlock)
-                                          : static_cast<double>(b * Occupancy::kBlock) - 1e-9;
-            exit = std::min(exit, (bound - o[a]) / d[a]);
+            const double bound = per[a] > 0 ? static_cast<double>((b + 1) * Occupancy::kBlock)
+                                            : static_cast<double>(b * Occupancy::kBlock) - 1e-9;
+            exit = std::min(exit, (bound - o[a]) * per[a]);
         }
-        return std::max(t + step, std::ceil((exit - offset) / step) * step + offset);
+        // Rounded down a millionth of a step: a lattice point on the
+        // block's face is never skipped (at worst one sample more in the
+        // empty block, which skips again).
+        return std::max(t + step, std::ceil((exit - offset) * per_step - 1e-6) * step + offset);
     }
 
     VoxelGridCache grid_;
