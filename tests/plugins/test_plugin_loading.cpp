@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 
 namespace arbor {
@@ -104,10 +106,19 @@ TEST(PluginLoading, EarlierFolderWinsForTheSameId)
 
 TEST(PluginCheck, PassesOnEveryShippedPlugin)
 {
+    // Debian's VTK 9.1 renders through X even off screen: without a display
+    // the VTK reference renderer rightly answers "unsupported", and its
+    // checks run only under Xvfb (as CI runs this test).
+    const char *display = std::getenv("DISPLAY");
+    const bool x = display && *display;
     int libraries = 0;
     for (const auto &e : fs::directory_iterator(test::plugin_dir())) {
         if (e.path().extension() != ".so")
             continue;
+        if (!x && e.path().filename() == "arbor-renderer-vtk.so") {
+            std::printf("note: %s not checked: no X display (run under xvfb-run)\n", e.path().filename().c_str());
+            continue;
+        }
         ++libraries;
         const ConformanceReport r = check_plugin_conformance(e.path(), std::chrono::seconds(120));
         EXPECT_TRUE(r.passed()) << e.path();
