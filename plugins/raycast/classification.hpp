@@ -24,7 +24,10 @@ public:
     void build(const arbor_tf_set &tf, double step_mm);
 
     // Premultiplied RGBA of a sample of `value` in `label`.
-    const float *lookup(uint32_t label, float value) const { return entry(label, (value - range_[label].low) * range_[label].scale); }
+    const float *lookup(uint32_t label, float value) const
+    {
+        return entry(label, (value - range_[label].low) * range_[label].scale);
+    }
     // The same, or nullptr where the sample is certainly transparent: its
     // entry lies before the label's first entry of nonzero opacity or after
     // its last (and NaN).  Most samples in the blocks a ray does not skip

@@ -386,9 +386,8 @@ private:
         // box is clipped, shifted by a fixed per-pixel fraction of a step.
         const double offset = offset_fraction * step;
         double t = std::ceil((t0 - offset) / step) * step + offset;
-        const double first = t;
         // The samples that stand for part of a step (one test per sample).
-        const double partial_first = enters_face ? first : -std::numeric_limits<double>::infinity();
+        const double partial_first = enters_face ? t : -std::numeric_limits<double>::infinity();
         const double partial_from = leaves_face ? t1 - step : std::numeric_limits<double>::infinity();
         const int64_t last_i = along.last[0], last_j = along.last[1], last_k = along.last[2];
         const bool labelled = kLabels && along.labelled;
@@ -449,9 +448,9 @@ private:
                 // the part of it inside.
                 float steps = 1.0f;
                 if (t == partial_first || t > partial_from) [[unlikely]] {
-                    if (enters_face && t == first)
+                    if (t == partial_first)
                         steps += static_cast<float>((t - t0) / step) - 0.5f;
-                    if (leaves_face && t + step > t1)
+                    if (t > partial_from)
                         steps += static_cast<float>((t1 - t) / step) - 0.5f;
                 }
                 integrate<kLabels, kGradient>(pass, table, i, j, k, static_cast<float>(px - i),
