@@ -84,9 +84,9 @@ PluginInstance vtk_renderer(bool shading)
 }
 
 // The reference renderer takes axis-aligned grids only. A grid whose axes
-// are flipped (brain1's rows run anterior to posterior, the LIDC chest CT's
-// rows and slices too) is given to both renderers with its axes as they
-// are stored: the same voxels, camera and work, the picture mirrored. An
+// are flipped (brain1's second axis runs against LPS, the LIDC chest CT's
+// second and third) is given to both renderers with its axes as they are
+// stored: the same voxels, camera and work, the picture mirrored. An
 // oblique grid stays as it is (and VTK's row says skipped).
 void store_order(Volume &v)
 {
@@ -126,7 +126,8 @@ int main(int argc, char **argv)
                              "engine/engine.vti", "bonsai/bonsai.vti", "aneurism/aneurism.vti"})
         volumes.push_back(test::shared_data(path));
     volumes.push_back(head);
-    std::printf("arbor_bench_render: 512x512, sample distance 0.5 voxel, global ramp TF; fps of the fastest of 3 rounds of 3 frames (2 on the large CTs), the renderers compared timed in alternation\n");
+    std::printf("arbor_bench_render: 512x512, sample distance 0.5 voxel, global ramp TF; fps of the fastest of 3 "
+                "rounds of 3 frames (2 on the large CTs), the renderers compared timed in alternation\n");
     std::printf("fps = frames per second; ratio = Arbor / VTK (> 1: Arbor faster); shaded, Arbor also with each "
                 "voxel's gradient (voxel g) and with local ambient occlusion 1 (LAO)\n\n");
     std::printf("%-46s %14s | %8s %8s %6s | %8s %8s %6s | %8s %7s | %8s %7s\n", "volume", "dims", "arbor", "vtk",
