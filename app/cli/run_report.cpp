@@ -148,11 +148,19 @@ json run_json(const RunReport &report, const RenderedRun &run, std::vector<std::
         j["branches"].push_back(
             branch_json(tree, *run.render->functions, run.render->image, report.filtered->volume->mapping(), b));
     if (const auto &balance = run.render->balance) {
+        const std::vector<double> &peel = run.render->peel;
         for (uint32_t b = 0; b < tree.branch_count; ++b) {
-            j["branches"][b]["optical_depth_scale"] = balance->scale[b];
+            // What the balance chose at the default flow rate, then the
+            // flow rate's peel on top (flow_peel.hpp): the product applied.
+            const double flow = b < peel.size() ? peel[b] : 1.0;
+            j["branches"][b]["optical_depth_scale"] = balance->scale[b] * flow;
+            j["branches"][b]["balance_scale"] = balance->scale[b];
+            j["branches"][b]["flow_peel"] = flow;
             j["branches"][b]["visibility_before_balance"] = balance->shares_before[b];
         }
-        j["balance"] = {{"iterations", balance->iterations}, {"views", {"anterior", "left", "superior"}}};
+        j["balance"] = {{"iterations", balance->iterations},
+                        {"views", {"anterior", "left", "superior"}},
+                        {"taken_at", "the generator's default flow rate"}};
     }
     if (const auto &vp = run.render->viewpoint)
         j["viewpoint"] = {{"azimuth", vp->azimuth},

@@ -1,6 +1,7 @@
 #include "pipeline.hpp"
 
 #include "branch_style.hpp"
+#include "flow_peel.hpp"
 #include "preview_functions.hpp"
 #include "render_scene.hpp"
 #include "stage_compute.hpp"
@@ -410,7 +411,8 @@ std::unique_ptr<PassScene> Pipeline::pass_scene(std::stop_token stop)
     if (current)
         p->functions = last->functions;
     else if (last && last->balance && last->balance->scale.size() == p->functions->branch_count())
-        p->functions = p->functions->with_optical_depth(last->balance->scale);
+        p->functions = p->functions->with_optical_depth(peeled_scale(
+            last->balance->scale, flow_peel(p->tf->depiction->cut->tree->record(), p->tf->flow_ratio)));
     if (!current)
         p->functions = styled(p->functions, p->tf->depiction->cut->tree->record(), d.view.branch_styles);
     p->camera = camera_for(d, *p->filtered);

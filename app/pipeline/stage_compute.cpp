@@ -3,6 +3,7 @@
 #include "volume_checksum.hpp"
 
 #include "branch_style.hpp"
+#include "flow_peel.hpp"
 #include "memory_plan.hpp"
 
 #include "render_scene.hpp"
@@ -325,6 +326,9 @@ std::shared_ptr<const void> depiction(StageContext &c)
     return r;
 }
 
+// The generator's parameter the balance is taken at the default of.
+constexpr const char *kFlowRate = "flow-rate";
+
 std::shared_ptr<const void> transfer_functions(StageContext &c)
 {
     const auto depicted = c.input<Stage::Depiction>();
@@ -377,6 +381,22 @@ std::shared_ptr<const void> transfer_functions(StageContext &c)
     const auto &background = c.input<Stage::Filter>()->background;
     request.background_level = background ? background->level : std::numeric_limits<double>::quiet_NaN();
     request.background_peak = background ? background->peak : std::numeric_limits<double>::quiet_NaN();
+    // The visibility balance is taken at the generator's default flow rate
+    // (flow_peel.hpp): when the document moves it, those functions too.
+    if (const arbor_param_desc *d = generator->find_param(kFlowRate);
+        d && d->type == ARBOR_PARAM_FLOAT && d->components == 1 && d->default_value[0] > 0) {
+        const arbor_param_value q = generator->get_param(kFlowRate);
+        if (q.number[0] != d->default_value[0]) {
+            arbor_param_value q0 = q;
+            q0.number[0] = d->default_value[0];
+            generator->set_param(kFlowRate, q0);
+            auto reference = std::make_shared<TransferFunctions>(cut.tree->size(), a.lut_size, request.min_spacing);
+            generate_transfer_functions(*generator, request, *reference, &c.job, c.stop());
+            generator->set_param(kFlowRate, q);
+            r->reference = std::move(reference);
+            r->flow_ratio = q.number[0] / q0.number[0];
+        }
+    }
     auto functions = std::make_shared<TransferFunctions>(cut.tree->size(), a.lut_size, request.min_spacing);
     generate_transfer_functions(*generator, request, *functions, &c.job, c.stop());
     r->functions = std::move(functions);
@@ -388,14 +408,31 @@ std::shared_ptr<const void> transfer_functions(StageContext &c)
 // transfer functions, labels and renderer, so an orbiting camera does not
 // balance again.
 struct BalanceMemo {
-    std::shared_ptr<const TransferFunctionsResult> tf;
+    std::shared_ptr<const TransferFunctionsResult> tf; // balanced at its default flow rate
     uint64_t labels_revision = 0;
     PluginSetting renderer;
+    std::optional<int32_t> selected;
     bool asked = false;    // for balancing
     bool balanced = false; // and got it (a renderer that measures no visibility gives none)
     BalanceResult balance;
     std::optional<ViewpointChoice> viewpoint; // chosen once for these functions
 };
+
+// Whether two transfer-function results differ at most in the flow rate,
+// so that the balance of one, taken at the default flow rate, holds for
+// the other (flow_peel.hpp).  Functions read from a file: only the same.
+bool same_but_flow_rate(const TransferFunctionsResult &a, const TransferFunctionsResult &b)
+{
+    if (&a == &b)
+        return true;
+    if (!a.file.empty() || !b.file.empty() || a.depiction != b.depiction || a.value_range != b.value_range ||
+        a.functions->lut_size() != b.functions->lut_size())
+        return false;
+    PluginSetting x = a.generator, y = b.generator;
+    x.params.erase(kFlowRate);
+    y.params.erase(kFlowRate);
+    return x == y;
+}
 
 // The user's zoom, on top of the framing: closer, or a smaller view.
 arbor_camera zoomed(arbor_camera c, double zoom)
@@ -437,9 +474,10 @@ std::shared_ptr<const void> render(StageContext &c)
     r->functions = tf->functions;
     auto *memo = std::any_cast<BalanceMemo>(&c.memo);
     const bool balance = c.document.appearance.balance_visibility;
-    if (!memo || memo->tf != tf || memo->labels_revision != labels->revision || memo->renderer != v.renderer ||
-        memo->asked != balance) {
-        c.memo = BalanceMemo{tf, labels->revision, v.renderer, balance, balance, {}, std::nullopt};
+    const std::optional<int32_t> &selected = c.document.appearance.selected;
+    if (!memo || !same_but_flow_rate(*memo->tf, *tf) || memo->labels_revision != labels->revision ||
+        memo->renderer != v.renderer || memo->selected != selected || memo->asked != balance) {
+        c.memo = BalanceMemo{tf, labels->revision, v.renderer, selected, balance, balance, {}, std::nullopt};
         memo = std::any_cast<BalanceMemo>(&c.memo);
         if (balance) {
             c.job.report("balancing visibility", 0.0);
@@ -457,7 +495,7 @@ std::shared_ptr<const void> render(StageContext &c)
                 if (c.document.appearance.selected && *c.document.appearance.selected > 0)
                     targets.focus = *c.document.appearance.selected;
                 memo->balance = balance_visibility(
-                    *tf->functions, layout, volume.geometry(),
+                    tf->balanced_at(), layout, volume.geometry(),
                     [&](const TransferFunctions &f, const arbor_camera &cam, uint32_t size) {
                         return preview(f, cam, size, size);
                     },
@@ -470,7 +508,9 @@ std::shared_ptr<const void> render(StageContext &c)
     }
     if (memo->balanced) {
         r->balance = memo->balance;
-        r->functions = tf->functions->with_optical_depth(memo->balance.scale);
+        if (tf->flow_ratio != 1.0)
+            r->peel = flow_peel(tf->depiction->cut->tree->record(), tf->flow_ratio);
+        r->functions = tf->functions->with_optical_depth(peeled_scale(memo->balance.scale, r->peel));
     }
     // A person's edits of single structures, on top (framing sees them too).
     r->functions = styled(r->functions, tf->depiction->cut->tree->record(), v.branch_styles);

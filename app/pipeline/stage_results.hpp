@@ -107,6 +107,12 @@ struct TransferFunctionsResult {
     PluginSetting generator;               // empty when read from a file
     std::filesystem::path file;            // the file they came from, if any
     std::shared_ptr<const TransferFunctions> functions;
+    // When the generator's flow rate Q is not its default Q0: the functions
+    // at Q0, where the visibility balance is taken (flow_peel.hpp), and
+    // Q / Q0.  Null and 1 otherwise: `functions` are those.
+    std::shared_ptr<const TransferFunctions> reference;
+    double flow_ratio = 1.0;
+    const TransferFunctions &balanced_at() const { return reference ? *reference : *functions; }
     std::array<double, 2> value_range{};   // the volume's stored minimum and maximum
     double seconds = 0.0;
 };
@@ -117,7 +123,10 @@ struct RenderResult {
     RenderedImage image;
     // The transfer functions rendered: the generator's, or balanced.
     std::shared_ptr<const TransferFunctions> functions;
-    std::optional<BalanceResult> balance;
+    std::optional<BalanceResult> balance; // taken at the default flow rate
+    // Per branch, the flow rate's peel on top of the balance (flow_peel.hpp);
+    // empty at the default flow rate or without a balance.
+    std::vector<double> peel;
     std::optional<Framing> framing;
     std::optional<ViewpointChoice> viewpoint; // when the view was chosen
     double seconds = 0.0;

@@ -53,6 +53,31 @@ TEST(Workstation, OpensRendersAndUndoesEveryChange)
     EXPECT_EQ(ws->document(), before);
 }
 
+TEST(Workstation, TheFlowRatePeelsTheOuterLayersAway)
+{
+    auto ws = phantom_workstation();
+    wait_idle(*ws);
+    const auto root_share = [&] {
+        const auto &v = ws->pipeline().latest<Stage::Render>()->image.label_visibility;
+        double total = 0;
+        for (double x : v)
+            total += x;
+        return total > 0 ? v.at(0) / total : 0.0;
+    };
+    const double at_default = root_share();
+    ASSERT_GT(at_default, 0.02);
+    ws->set("flow-rate", "10");
+    wait_idle(*ws);
+    const double low = root_share();
+    ws->set("flow-rate", "1000");
+    wait_idle(*ws);
+    const double high = root_share();
+    // The balance chose the default picture and no longer undoes the slider
+    // (flow_peel.hpp): lower Q brings the body back, higher Q peels it.
+    EXPECT_GT(low, 1.5 * at_default);
+    EXPECT_LT(high, 0.5 * at_default);
+}
+
 TEST(Workstation, SelectionThresholdAndCrosshair)
 {
     auto ws = phantom_workstation();

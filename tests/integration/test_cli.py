@@ -766,6 +766,31 @@ class Run(unittest.TestCase):
         self.assertIn("visibility", stdout)
         self.assertEqual(len([l for l in stdout.splitlines() if "%  " in l]), len(r["branches"]))
 
+    def test_the_flow_rate_peels_a_real_mr_from_its_surface_to_its_inside(self):
+        """The balance is taken at the default flow rate and kept: Q 10 .. 1000
+        takes the root (the head's surface) from over half the picture to
+        under a tenth, monotonically, and brings the leaves forward."""
+        out = SCRATCH / "peel" / "brain1.png"
+        rates = (10, 30, 60, 150, 300, 1000)
+        arbor("run", DATA / "mr_brain_tumor_pyradiomics/brain1_image.nrrd", "--flow-rate",
+              ",".join(map(str, rates)), "--width", 256, "--height", 256, "-o", out)
+        runs = json.loads((SCRATCH / "peel" / "brain1.report.json").read_text())["runs"]
+        self.assertEqual(len(runs), len(rates))
+        roots = [r["branches"][0]["visibility"] for r in runs]
+        self.assertGreaterEqual(roots[0], 0.5, roots)
+        self.assertLessEqual(roots[-1], 0.1, roots)
+        for a, b in zip(roots, roots[1:]):
+            self.assertLess(b, a, roots)
+        parents = {b["parent"] for b in runs[0]["branches"]}
+        leaves = lambda r: sum(b["visibility"] for b in r["branches"] if b["label"] not in parents)
+        self.assertGreater(leaves(runs[-1]), leaves(runs[0]) + 0.2)
+        at_default = runs[rates.index(60)]["branches"]
+        for r in runs:
+            for b, d in zip(r["branches"], at_default):
+                self.assertEqual(b["balance_scale"], d["balance_scale"], "one balance, taken at the default")
+                self.assertAlmostEqual(b["optical_depth_scale"], b["balance_scale"] * b["flow_peel"])
+        self.assertEqual([b["flow_peel"] for b in at_default], [1.0] * len(at_default))
+
     def test_ct_branches_name_their_hounsfield_range_and_tissues(self):
         out = SCRATCH / "ct-head.png"
         arbor("run", DATA / "dicom_ct_head_0051", "--keep", 8, "--width", 64, "--height", 64, "-o", out)
