@@ -81,8 +81,8 @@ void print_branches(const RenderedRun &run, const ValueMapping &mapping, bool on
         std::printf("\n");
         return;
     }
-    std::printf("  %5s %-7s %5s %-22s %-36s %10s  %s\n", "label", "kind", "depth", hu ? "HU range" : "value range",
-                hu ? "tissues" : "", "visibility", "shape");
+    std::printf("  %5s %-7s %5s %-22s %-36s %10s  %-13s %s\n", "label", "kind", "depth", hu ? "HU range" : "value range",
+                hu ? "tissues" : "", "visibility", "shape", "colour");
     for (uint32_t b = 0; b < t.branch_count; ++b) {
         const double lo = mapping.physical(tf.domain(b).first), hi = mapping.physical(tf.domain(b).second);
         std::string tissues;
@@ -91,11 +91,15 @@ void print_branches(const RenderedRun &run, const ValueMapping &mapping, bool on
                 tissues += (tissues.empty() ? "" : ", ") + name;
         char range[64];
         std::snprintf(range, sizeof range, "%.6g .. %.6g", std::min(lo, hi), std::max(lo, hi));
+        // The generator's note: "shape: why; colour: family (why)".
         const std::string note = tf.note(b);
-        std::printf("  %5u %-7s %5u %-22s %-36s %9.1f%%  %s\n", b,
+        const std::size_t colour_at = note.find("colour: ");
+        const std::string colour =
+            colour_at == std::string::npos ? "" : note.substr(colour_at + 8, note.find(" (", colour_at) - colour_at - 8);
+        std::printf("  %5u %-7s %5u %-22s %-36s %9.1f%%  %-13s %s\n", b,
                     b == 0 ? "root" : (t.extremum_kind[b] == ARBOR_EXTREMUM_MINIMUM ? "minimum" : "maximum"), t.depth[b],
                     range, tissues.c_str(), 100.0 * visibility_share(run.render->image, b),
-                    note.substr(0, note.find(':')).c_str());
+                    colour_at == 0 ? "" : note.substr(0, note.find(':')).c_str(), colour.c_str());
     }
 }
 

@@ -125,7 +125,7 @@ void AppearanceFlags::add_to(CLI::App &command, Context &context)
     command.add_option("--shape", shape_, "Opacity shape: ramp, inverse-ramp, hat, box, peak; `arbor run` sweeps a comma list")
         ->type_name("SHAPE[,SHAPE...]")
         ->group("Transfer functions");
-    command.add_option("--hues", hues_, "Hue template: full, or i, V, L, I, T, Y, X with :rotation (X:30); `arbor run` sweeps a comma list")
+    command.add_option("--hues", hues_, "Hue template: auto (by tissue on a CT, else full), full, or i, V, L, I, T, Y, X with :rotation (X:30); `arbor run` sweeps a comma list")
         ->type_name("HUES[,HUES...]")
         ->group("Transfer functions");
     command.add_option("--select", select_, "Selected branch (a label of the simplified tree)")

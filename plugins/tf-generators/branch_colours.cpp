@@ -38,8 +38,37 @@ std::vector<double> vividness_importance(const sdk::BranchTreeView &tree)
     return out;
 }
 
+namespace {
+
+// Per branch its hue within its family's sector: the family's branches in
+// root-down order spread evenly over it.
+std::vector<double> family_hues(const std::vector<TissueChoice> &tissues)
+{
+    const std::vector<HueFamily> &families = hue_families();
+    std::vector<std::size_t> members(families.size(), 0), rank(tissues.size(), 0);
+    for (std::size_t b = 0; b < tissues.size(); ++b)
+        rank[b] = members[tissues[b].family]++;
+    std::vector<double> hues(tissues.size());
+    for (std::size_t b = 0; b < tissues.size(); ++b) {
+        const HueFamily &f = families[tissues[b].family];
+        const double t = (static_cast<double>(rank[b]) + 0.5) / static_cast<double>(members[tissues[b].family]);
+        hues[b] = std::fmod(f.hue + f.width * (t - 0.5) + 360.0, 360.0);
+    }
+    return hues;
+}
+
+// x in [from_low, from_high] to the same place in [to_low, to_high].
+double remap(double x, double from_low, double from_high, double to_low, double to_high)
+{
+    const double t = from_high > from_low ? std::clamp((x - from_low) / (from_high - from_low), 0.0, 1.0) : 0.5;
+    return to_low + t * (to_high - to_low);
+}
+
+} // namespace
+
 std::vector<BranchColour> branch_colours(const sdk::BranchTreeView &tree, const ColourSettings &s,
-                                         const arbor_depiction *depiction, ColourCache &cache)
+                                         const arbor_depiction *depiction, ColourCache &cache,
+                                         const std::vector<TissueChoice> *tissues)
 {
     const uint32_t n = tree.size();
     uint32_t max_depth = 0;
@@ -50,7 +79,9 @@ std::vector<BranchColour> branch_colours(const sdk::BranchTreeView &tree, const 
     for (uint32_t b = n; b-- > 1;)
         subtree[static_cast<uint32_t>(tree.parent(b))] += subtree[b];
     const std::vector<double> importance = vividness_importance(tree);
-    const std::vector<double> hues = s.hues.spread(n); // branches are in root-down order
+    const bool by_tissue = tissues && tissues->size() == n;
+    // Branches are in root-down order.
+    const std::vector<double> hues = by_tissue ? family_hues(*tissues) : s.hues.spread(n);
 
     std::vector<BranchColour> out(n);
     for (uint32_t b = 0; b < n; ++b) {
@@ -63,6 +94,11 @@ std::vector<BranchColour> branch_colours(const sdk::BranchTreeView &tree, const 
         // importance scales only the rise with depth, so V stays in
         // [V_min, V_max] and the root is the least vivid.
         c.vividness = s.vividness_min + depth * (s.vividness_max - s.vividness_min) * importance[b];
+        if (by_tissue) {
+            const HueFamily &f = hue_families()[(*tissues)[b].family];
+            c.lightness = remap(c.lightness, s.lightness_min, s.lightness_max, f.lightness_min, f.lightness_max);
+            c.vividness = remap(c.vividness, s.vividness_min, s.vividness_max, f.vividness_min, f.vividness_max);
+        }
         if (depiction) {
             if (!std::isnan(depiction->hue[b]))
                 c.hue = depiction->hue[b];

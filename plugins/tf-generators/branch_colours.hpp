@@ -7,6 +7,7 @@
 
 #include "colour_space.hpp"
 #include "harmonic_template.hpp"
+#include "tissue_hues.hpp"
 
 #include <arbor/depictor.h>
 #include <arbor/sdk/branch_tree.hpp>
@@ -38,9 +39,14 @@ private:
     std::map<std::tuple<double, double, double>, LightVivid> colours_;
 };
 
-// `depiction` (may be NULL) overrides hues and scales vividness.
+// `depiction` (may be NULL) overrides hues and scales vividness.  With
+// `tissues` (one per branch, may be NULL) each branch's hue is spread over
+// its family's sector among the branches of that family, and its lightness
+// and vividness, found by the same rules, are mapped into the family's
+// ranges (tissue_hues.hpp); `settings.hues` is then not used.
 std::vector<BranchColour> branch_colours(const sdk::BranchTreeView &tree, const ColourSettings &settings,
-                                         const arbor_depiction *depiction, ColourCache &cache);
+                                         const arbor_depiction *depiction, ColourCache &cache,
+                                         const std::vector<TissueChoice> *tissues = nullptr);
 
 // ITri importance of every branch scaled to [0, 1] for vividness: each
 // branch's ITri over the largest among its siblings (itself included), as

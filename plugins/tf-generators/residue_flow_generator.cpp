@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 namespace arbor::tf {
 
@@ -65,9 +66,11 @@ std::vector<sdk::ParamSpec> residue_flow_params()
                     .group("Opacity")
                     .hint("Shape peak: where the isovalue lies between saddle (0) and extremum (1)"));
     p.push_back(sdk::ParamSpec::real("peak-width", "Peak width", 0.1, 0.001, 1.0).group("Opacity"));
-    p.push_back(sdk::ParamSpec::text("hues", "Hue template", "full")
+    p.push_back(sdk::ParamSpec::text("hues", "Hue template", "auto")
                     .group("Colour")
-                    .hint("full, or a harmonic template i, V, L, I, T, Y, X with an optional rotation: X:30"));
+                    .hint("auto: on a CT (Hounsfield units) a hue family per tissue (bone ivory, contrast red, soft "
+                          "tissue flesh, fat yellow, lung blue-grey), elsewhere the full wheel; or full, or a "
+                          "harmonic template i, V, L, I, T, Y, X with an optional rotation: X:30"));
     p.push_back(sdk::ParamSpec::boolean("clear-background", "Clear background", true)
                     .group("Opacity")
                     .hint("Values at or below the background level the host found (the air around a CT, the noise "
@@ -105,8 +108,9 @@ public:
         fixed.peak_position = params().number("peak-position");
         fixed.peak_width = params().number("peak-width");
         ColourSettings colour;
+        const std::string &hues = params().text("hues");
         try {
-            colour.hues = HarmonicTemplate::parse(params().text("hues"));
+            colour.hues = HarmonicTemplate::parse(hues == "auto" ? "full" : hues);
         } catch (const std::invalid_argument &e) {
             sdk::fail(ARBOR_ERROR_INVALID_ARGUMENT, std::string("hues: ") + e.what());
         }
@@ -118,7 +122,12 @@ public:
         out.opacity_unit_distance = request.min_spacing > 0 ? request.min_spacing * params().number("opacity-unit")
                                                             : params().number("opacity-unit");
         const std::vector<OpacityRange> ranges = residue_flow(tree, flow);
-        const std::vector<BranchColour> colours = branch_colours(tree, colour, request.depiction, cache_);
+        // Colour by tissue where values are Hounsfield units.
+        const std::vector<TissueChoice> tissues =
+            hues == "auto" && holds_hounsfield_units(request) ? choose_tissues(tree, request)
+                                                                : std::vector<TissueChoice>{};
+        const std::vector<BranchColour> colours =
+            branch_colours(tree, colour, request.depiction, cache_, tissues.empty() ? nullptr : &tissues);
         const bool notes = ARBOR_HAS_FIELD(arbor_tf_set, out.struct_size, note_size) && out.notes && out.note_size > 1;
         // The background stays clear: opacity fades in from its level over
         // the width of its noise, and branch intervals start above it.
@@ -145,6 +154,15 @@ public:
                 shapes[b].shape = choice.shape;
                 if (notes)
                     std::snprintf(out.notes + std::size_t{b} * out.note_size, out.note_size, "%s", choice.why.c_str());
+            } else if (notes) {
+                out.notes[std::size_t{b} * out.note_size] = '\0';
+            }
+            if (notes && !tissues.empty()) {
+                // After the shape's reason: the colour family's.
+                char *note = out.notes + std::size_t{b} * out.note_size;
+                const std::size_t used = std::strlen(note);
+                std::snprintf(note + used, out.note_size - used, "%scolour: %s (%s)", used ? "; " : "",
+                              hue_families()[tissues[b].family].name, tissues[b].why.c_str());
             }
             corners[b] = shape_corners(shapes[b]);
             total_points += corners[b].size();

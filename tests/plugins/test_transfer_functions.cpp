@@ -9,6 +9,7 @@
 #include "branch_colours.hpp" // plugins/tf-generators: the colour targets
 #include "colour_space.hpp"
 #include "harmonic_template.hpp"
+#include "tissue_hues.hpp"
 #include "io/phantom.hpp"
 #include "host/branch_tree_record.hpp"
 #include "host/simplifier_importance.hpp"
@@ -321,6 +322,80 @@ TEST(TransferFunctions, HuesStayInsideTheHarmonicTemplate)
     } catch (const PluginError &e) {
         EXPECT_NE(std::string(e.what()).find("hues"), std::string::npos) << e.what();
     }
+}
+
+// On a CT each branch's hue family follows its tissue, read from the mean
+// of its values (f_min + hypervolume / volume) and, for bone, its peak.
+TEST(TransferFunctions, OnACtTheHueFollowsTheTissue)
+{
+    // Stored values are HU over [-1024, 3071]; every branch 1000 voxels.
+    test::BranchTreeBuilder builder({-1, 0, 0, 0, 0, 0, 0});
+    struct Made {
+        double saddle, peak, mean;
+        const char *family;
+    };
+    const Made made[] = {{-950, -700, -800, "lung and airways"}, {-150, -60, -100, "fat"},
+                         {-20, 90, 40, "soft tissue"},          {150, 400, 250, "contrast"},
+                         {150, 1200, 250, "bone"},              {300, 1500, 900, "bone"}};
+    for (uint32_t b = 1; b < 7; ++b) {
+        const Made &m = made[b - 1];
+        builder.set(b, m.saddle, m.peak, m.peak < m.saddle, 0.5, 1000, (m.mean + 1024) * 1000);
+    }
+    const arbor_branch_tree &tree = builder.record();
+    int16_t voxel = 0;
+    arbor_volume volume{};
+    volume.struct_size = sizeof volume;
+    volume.voxel_type = ARBOR_VOXEL_I16;
+    for (int a = 0; a < 3; ++a)
+        volume.dims[a] = 1, volume.spacing[a] = 1;
+    volume.value_scale = 1;
+    volume.value_unit = "HU";
+    volume.voxels = &voxel;
+    arbor_tf_request r = request_for(tree);
+    r.value_range[0] = -1024;
+    r.value_range[1] = 3071;
+    r.volume = &volume;
+    r.background_level = r.background_peak = std::nan("");
+    PluginInstance g = create("org.arbor.tf.residue-flow");
+    const auto generated = [&] {
+        auto tf = std::make_unique<TransferFunctions>(tree.branch_count, kLut, 1.0);
+        generate_transfer_functions(g, r, *tf);
+        return tf;
+    };
+    const auto family = [](const std::string &name) {
+        for (const tf::HueFamily &f : tf::hue_families())
+            if (name == f.name)
+                return f;
+        throw std::invalid_argument(name);
+    };
+    const auto check = [&](const TransferFunctions &tf, const std::string &unit) {
+        for (uint32_t b = 0; b < 7; ++b) {
+            const std::string name = b == 0 ? "soft tissue" : made[b - 1].family;
+            EXPECT_NE(tf.note(b).find("colour: " + name), std::string::npos) << b << ": " << tf.note(b);
+            const tf::HueFamily f = family(name);
+            const auto [h, sat] = hue_of(tf.lut(b) + 4 * (kLut - 1));
+            const double off = std::fabs(std::remainder(h - f.hue, 360.0));
+            EXPECT_LE(off, f.width / 2 + 1.5) << name << " branch " << b << " hue " << h;
+            const tf::Lab lab = tf::srgb_to_lab({tf.lut(b)[4 * (kLut - 1)], tf.lut(b)[4 * (kLut - 1) + 1],
+                                             tf.lut(b)[4 * (kLut - 1) + 2]});
+            EXPECT_GE(lab.L, f.lightness_min - 1) << name;
+            EXPECT_LE(lab.L, f.lightness_max + 1) << name;
+        }
+        EXPECT_NE(tf.note(0).find(unit), std::string::npos) << tf.note(0);
+    };
+    check(*generated(), "values in HU");
+    // No unit, but the air around the body at -1000: taken as HU.
+    volume.value_unit = "";
+    r.background_peak = -1003;
+    r.background_level = -950;
+    check(*generated(), "the air at -1003 HU: taken as HU");
+    // Not a CT (the background at 0), or hues asked for: the harmonic wheel.
+    r.background_peak = 0;
+    r.background_level = 40;
+    EXPECT_EQ(generated()->note(3).find("colour:"), std::string::npos);
+    volume.value_unit = "HU";
+    set_text(g, "hues", "full");
+    EXPECT_EQ(generated()->note(3).find("colour:"), std::string::npos);
 }
 
 TEST(TransferFunctions, RelationWheelLegendIsDrawn)
