@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/ct_tissue.hpp"
+#include "pipeline/context_structures.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -147,6 +148,16 @@ json run_json(const RunReport &report, const RenderedRun &run, std::vector<std::
     for (uint32_t b = 0; b < tree.branch_count; ++b)
         j["branches"].push_back(
             branch_json(tree, *run.render->functions, run.render->image, report.filtered->volume->mapping(), b));
+    for (uint32_t b = 0; b < tree.branch_count && b < cut.shapes.size(); ++b) {
+        j["branches"][b]["thickness_mm"] = cut.shapes[b].thickness_mm;
+        j["branches"][b]["compactness"] = cut.shapes[b].compactness;
+        j["branches"][b]["field_of_view_cut"] = cut.shapes[b].cut_fraction;
+        j["branches"][b]["outside_body"] = cut.shapes[b].outside_body;
+        const pipeline::ContextReason context = pipeline::context_reason(
+            cut.shapes[b], tree.extremum_kind[b] == ARBOR_EXTREMUM_MAXIMUM, b == 0);
+        if (context != pipeline::ContextReason::None)
+            j["branches"][b]["context"] = pipeline::describe(context);
+    }
     if (const auto &balance = run.render->balance) {
         const std::vector<double> &peel = run.render->peel;
         for (uint32_t b = 0; b < tree.branch_count; ++b) {

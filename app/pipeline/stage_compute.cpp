@@ -3,6 +3,7 @@
 #include "volume_checksum.hpp"
 
 #include "branch_style.hpp"
+#include "context_structures.hpp"
 #include "flow_peel.hpp"
 #include "memory_plan.hpp"
 
@@ -11,6 +12,7 @@
 #include "tree_cache.hpp"
 
 #include "core/available_memory.hpp"
+#include "core/body_region.hpp"
 #include "core/cancelled.hpp"
 #include "core/stopwatch.hpp"
 #include "host/filter_run.hpp"
@@ -144,6 +146,8 @@ std::shared_ptr<const void> filter(StageContext &c)
         r->filters.push_back(setting);
     }
     r->background = estimate_background(*r->volume);
+    r->body = std::make_shared<const BodyRegion>(*r->volume, r->background ? r->background->level
+                                                                            : std::numeric_limits<double>::quiet_NaN());
     r->revision = next_revision();
     r->seconds = watch.lap();
     return r;
@@ -266,6 +270,11 @@ std::shared_ptr<const void> cut(StageContext &c)
     r->labels = std::make_shared<const LabelMap>(topology::label_voxels(tree->tree, d->branches, r->cut));
     const Geometry &g = volume.geometry();
     r->shapes = topology::label_shapes(*r->labels, g.dims, g.spacing, static_cast<uint32_t>(r->cut.kept.size()));
+    if (const auto &body = c.input<Stage::Filter>()->body) {
+        const std::vector<double> outside = body->outside_shares(*r->labels, static_cast<uint32_t>(r->shapes.size()));
+        for (std::size_t l = 0; l < r->shapes.size(); ++l)
+            r->shapes[l].outside_body = outside[l];
+    }
     r->tree = std::make_unique<const BranchTreeRecord>(tree->tree, d->branches, r->cut, volume, &r->shapes);
     r->seconds = watch.lap();
     return r;
@@ -489,8 +498,14 @@ std::shared_ptr<const void> render(StageContext &c)
                 layout.voxels.assign(t.branch_count, 0.0);
                 for (const uint32_t l : *cut.labels)
                     layout.voxels[l] += 1;
-                for (const topology::LabelShape &shape : cut.shapes)
+                for (std::size_t b = 0; b < cut.shapes.size(); ++b) {
+                    const topology::LabelShape &shape = cut.shapes[b];
                     layout.sheet.push_back(shape.compactness > 0 && shape.compactness < 0.2);
+                    layout.context.push_back(
+                        b < t.branch_count &&
+                        context_reason(shape, t.extremum_kind[b] == ARBOR_EXTREMUM_MAXIMUM, b == 0) !=
+                            ContextReason::None);
+                }
                 BalanceTargets targets;
                 if (c.document.appearance.selected && *c.document.appearance.selected > 0)
                     targets.focus = *c.document.appearance.selected;

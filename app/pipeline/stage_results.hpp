@@ -12,6 +12,7 @@
 #include "visibility_balance.hpp"
 
 #include "core/background_level.hpp"
+#include "core/body_region.hpp"
 #include "core/hounsfield_scale.hpp"
 #include "core/volume.hpp"
 #include "host/branch_tree_record.hpp"
@@ -43,6 +44,7 @@ struct ImportResult {
 struct FilterResult {
     std::shared_ptr<const Volume> volume; // the import's own when the chain is empty
     std::optional<BackgroundLevel> background; // the values that are background (core/background_level.hpp)
+    std::shared_ptr<const BodyRegion> body;    // where the body is (core/body_region.hpp)
     std::string source;                   // "scan.nrrd | gaussian:sigma=1.5"
     std::vector<PluginSetting> filters;   // as applied
     std::optional<DenoiseAdvice> denoise; // when the document asked for automatic denoising

@@ -57,8 +57,9 @@ std::vector<double> shares_of(const std::vector<double> &v)
 // The shares closest to `s` within the bounds: the root and thin sheets
 // capped, every other branch floored, the rest scaled to keep their ratios
 // and the sum 1.
-std::vector<double> targets_for(const std::vector<double> &s, const std::vector<bool> &sheet, const BalanceTargets &t)
+std::vector<double> targets_for(const std::vector<double> &s, const BranchLayout &layout, const BalanceTargets &t)
 {
+    const std::vector<bool> &sheet = layout.sheet, &context = layout.context;
     const std::size_t n = s.size();
     std::vector<double> out(s);
     if (n == 1)
@@ -72,6 +73,13 @@ std::vector<double> targets_for(const std::vector<double> &s, const std::vector<
             fixed[0] = changed = true;
         }
         for (std::size_t b = 1; b < n; ++b) {
+            if (b < context.size() && context[b] && static_cast<int32_t>(b) != t.focus) {
+                if (!fixed[b] && out[b] > t.context_cap) {
+                    out[b] = t.context_cap;
+                    fixed[b] = changed = true;
+                }
+                continue;
+            }
             const double least = static_cast<int32_t>(b) == t.focus ? std::max(floor, t.focus_floor) : floor;
             if (!fixed[b] && out[b] < least) {
                 out[b] = least;
@@ -112,7 +120,10 @@ BalanceResult iterate(const TransferFunctions &tf, const BranchLayout &layout, c
     std::vector<bool> peeled(n, false); // once peeled, never made denser for the picture's sake
     for (int it = 0; it < kIterations; ++it) {
         throw_if_stopped(stop);
-        const std::vector<double> want = targets_for(shares, layout.sheet, targets);
+        const std::vector<double> want = targets_for(shares, layout, targets);
+        const auto context = [&](std::size_t b) {
+            return b < layout.context.size() && layout.context[b] && static_cast<int32_t>(b) != targets.focus;
+        };
         // Opacity for the picture as a whole: denser everywhere when the
         // content is too faint to read as surfaces (never thinner).
         const double global =
@@ -124,7 +135,7 @@ BalanceResult iterate(const TransferFunctions &tf, const BranchLayout &layout, c
         for (std::size_t b = 0; b < n; ++b) {
             if (shares[b] > 0)
                 step[b] = std::pow(want[b] / shares[b], 0.9);
-            else if (b != 0)
+            else if (b != 0 && !context(b))
                 step[b] = kStepLimit; // unseen: denser until it shows
             done = done && std::fabs(step[b] - 1.0) < 0.1;
         }
@@ -135,7 +146,8 @@ BalanceResult iterate(const TransferFunctions &tf, const BranchLayout &layout, c
         // The selected structure's ancestors are peeled as soon as it is
         // short of its floor: it is what the person wants to see.
         for (std::size_t b = 1; b < n; ++b)
-            if ((static_cast<int32_t>(b) == targets.focus
+            if (!context(b) &&
+                (static_cast<int32_t>(b) == targets.focus
                      ? shares[b] < 0.9 * want[b]
                      : shares[b] < 0.5 * want[b] && r.scale[b] * step[b] > 8.0 * r.scale[0]) &&
                 voxels[b] >= 1e-4 * structures)
@@ -145,11 +157,12 @@ BalanceResult iterate(const TransferFunctions &tf, const BranchLayout &layout, c
                 }
         // The root follows its share alone: made denser with the rest it
         // would take the picture back.
-        // A peeled branch is not made denser with the rest, which would undo it.
+        // A peeled branch is not made denser with the rest, which would undo
+        // it, nor is context, which is to stay faint.
         for (std::size_t b = 0; b < n; ++b) {
             r.scale[b] = std::clamp(
                 r.scale[b] *
-                    std::clamp(step[b] * peel[b] * (b == 0 || peeled[b] || shares[b] > want[b] ? 1.0 : global),
+                    std::clamp(step[b] * peel[b] * (b == 0 || peeled[b] || context(b) || shares[b] > want[b] ? 1.0 : global),
                                1 / kStepLimit, kStepLimit),
                 1 / kScaleLimit, kScaleLimit);
             r.scale[b] = std::max(r.scale[b], least[b]);

@@ -11,6 +11,12 @@
 //     `root_floor` and `root_cap`,
 //   - a thin sheet or shell (compactness below 0.2: a fat layer, a skull, a
 //     headrest) at most `sheet_cap`: layers are what one sees through,
+//   - what is not the patient's anatomy inside the field of view - an
+//     object outside the body (a headrest, a table, a frame; see
+//     core/body_region.hpp) or a slab the field of view cut (a fifth or more
+//     of its surface on the scan's border: an arm, the top of a head cut by
+//     the last slice) - at most `context_cap`, and no floor: it stays as
+//     faint context, where it is, rather than taking the picture,
 //   - the content, where anything is seen, is opaque enough to read as
 //     surfaces (`coverage` of mean opacity; made denser for that are only
 //     the structures not already above their share, so coverage never
@@ -55,6 +61,7 @@ struct BalanceTargets {
     double root_floor = 0.12; // least share of the root branch: the body stays in the picture
     double root_cap = 0.35;   // most share of the root branch
     double sheet_cap = 0.25;  // most share of a thin sheet or shell
+    double context_cap = 0.02; // most share of an object outside the body or a slab the field of view cut
     double coverage = 0.7;  // mean opacity over the pixels where anything is seen
     int32_t focus = -1;       // a selected structure (not the root), or -1
     double focus_floor = 0.25; // least share of the selected structure: focus and context
@@ -73,11 +80,13 @@ using PreviewFn = std::function<RenderedImage(const TransferFunctions &tf, const
 // Throws when the previews measure no visibility (a renderer that does not
 // report it): then there is nothing to balance on.
 // Per branch: its parent in the branch tree (-1 for the root), how many
-// voxels it labels, and whether it is a thin sheet or shell.
+// voxels it labels, whether it is a thin sheet or shell, and whether it is
+// context (not anatomy, or cut by the field of view).
 struct BranchLayout {
     std::vector<int32_t> parent;
     std::vector<double> voxels;
     std::vector<bool> sheet;
+    std::vector<bool> context; // outside the body, or cut by the field of view (may be empty: none)
 };
 
 BalanceResult balance_visibility(const TransferFunctions &tf, const BranchLayout &layout, const Geometry &geometry,

@@ -21,6 +21,17 @@ namespace arbor::topology {
 struct LabelShape {
     double thickness_mm = 0.0;
     double compactness = 0.0;
+    // Of its voxels' faces toward other labels or out of the grid, the share
+    // (by area) on the grid's own border: how much of it the field of view
+    // cut.  An arm cut by a chest CT's field of view, or a headrest running
+    // the scan's length, is a slab along the border (0.1 and more); a
+    // structure inside the body meets the border with its cross-sections
+    // only (the spine of a chest CT: about 0.03).
+    double cut_fraction = 0.0;
+    // The share of its voxels outside the body (core/body_region.hpp: a
+    // headrest, a table, an arm lying apart); filled in by the pipeline,
+    // which knows the scan's background, 0 here.
+    double outside_body = 0.0;
 };
 
 // `labels`: one per voxel, i fastest, each < label_count.  A label that

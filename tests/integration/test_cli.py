@@ -804,6 +804,23 @@ class Run(unittest.TestCase):
         self.assertAlmostEqual(root["hu_range"][0], -1024, delta=1)  # stored 0, intercept -1024
         self.assertEqual(root["tissues"][0], "air")
         self.assertEqual(root["tissues"][-1], "bone")
+        # Colour by tissue: every branch wholly in bone is coloured as bone,
+        # the root as the skin.
+        self.assertIn("colour: soft tissue", root["generator_note"])
+        bones = [b for b in r["branches"] if b["hu_range"][0] >= 350]
+        self.assertGreaterEqual(len(bones), 2)
+        for b in bones:
+            self.assertIn("colour: bone", b["generator_note"], b)
+        # The headrest (its two halves, behind the head) is outside the body:
+        # faint context; nothing of the skull is.
+        context = [b for b in r["branches"] if b.get("context") == "outside the body"]
+        self.assertEqual(len(context), 2, [b.get("context") for b in r["branches"]])
+        for b in context:
+            self.assertGreater(b["extremum_position_mm"][1], 60)  # LPS: posterior
+            self.assertEqual(b["outside_body"], 1.0)
+            self.assertLessEqual(b["visibility"], 0.03)
+        for b in bones:
+            self.assertNotIn("context", b)
 
     def test_automatic_count_keeps_the_tumour_of_the_noisy_phantom(self):
         out = SCRATCH / "noisy-head.png"

@@ -322,6 +322,39 @@ TEST(VisibilityBalance, EveryStructureGetsItsShareAndTheBodyItsBounds)
     EXPECT_GE(scene.renders, 3); // three views per measurement
 }
 
+// A structure that is context (outside the body, or cut by the field of
+// view) is held at its cap however much of the picture it would take, and
+// gets no floor: the sheet in front (30 % of the pixels) as a headrest.
+TEST(VisibilityBalance, ContextStaysFaintAndTheRestShareThePicture)
+{
+    TransferFunctions tf(5, 2, 1.0);
+    assign_layered(tf);
+    pipeline::BranchLayout layout = layered_layout();
+    layout.context = {false, false, false, true, false};
+    LayeredScene scene;
+    Geometry g;
+    g.dims = {32, 32, 32};
+    const pipeline::BalanceTargets targets;
+    const auto r = pipeline::balance_visibility(
+        tf, layout, g, [&](const TransferFunctions &f, const arbor_camera &, uint32_t size) { return scene(f, size); },
+        targets);
+    EXPECT_GT(r.shares_before[3], 0.05);
+    EXPECT_LE(r.shares_after[3], 1.2 * targets.context_cap);
+    EXPECT_LT(r.scale[3], 1.0);
+    for (const uint32_t b : {1u, 2u, 4u})
+        EXPECT_GE(r.shares_after[b], 0.8 * targets.floor) << "structure " << b;
+    // Unseen context is not made denser until it shows.
+    layout.context = {false, false, false, false, true};
+    assign_layered(tf);
+    const float nothing[8] = {1, 1, 1, 0, 1, 1, 1, 0};
+    tf.assign(4, {0.0, 1.0}, nothing);
+    LayeredScene again;
+    const auto unseen = pipeline::balance_visibility(
+        tf, layout, g, [&](const TransferFunctions &f, const arbor_camera &, uint32_t size) { return again(f, size); },
+        targets);
+    EXPECT_LE(unseen.scale[4], 1.0);
+}
+
 // The layered scene balanced with `focus` selected (-1: none).
 pipeline::BalanceResult balance_layered(int32_t focus)
 {
@@ -380,7 +413,7 @@ TEST(VisibilityBalance, ARendererThatMeasuresNothingIsRefused)
     const float rgba[8] = {1, 1, 1, 0, 1, 1, 1, 0.5f};
     tf.assign(0, {0.0, 1.0}, rgba);
     tf.assign(1, {0.0, 1.0}, rgba);
-    pipeline::BranchLayout layout{{-1, 0}, {10, 10}, {false, false}};
+    pipeline::BranchLayout layout{{-1, 0}, {10, 10}, {false, false}, {}};
     Geometry g;
     g.dims = {8, 8, 8};
     EXPECT_THROW(pipeline::balance_visibility(tf, layout, g,
