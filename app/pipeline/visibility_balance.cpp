@@ -16,6 +16,7 @@ constexpr int kIterations = 8;
 constexpr double kStepLimit = 6.0;   // a multiplier changes at most by this factor per iteration
 constexpr double kScaleLimit = 200.0; // nor beyond this, either way, in all
 constexpr double kSeen = 0.02;        // a pixel's opacity above which something is seen there
+constexpr double kGrowth = 3.0;       // a free structure's share grows at most by this factor to fill the picture
 constexpr double kContext = 0.5;      // a selection thins its context to no less than this part of its optical depth
 
 struct Measure {
@@ -57,7 +58,8 @@ std::vector<double> shares_of(const std::vector<double> &v)
 // The shares closest to `s` within the bounds: the root and thin sheets
 // capped, every other branch floored, the rest scaled to keep their ratios
 // and the sum 1.
-std::vector<double> targets_for(const std::vector<double> &s, const BranchLayout &layout, const BalanceTargets &t)
+std::vector<double> targets_for(const std::vector<double> &s, const std::vector<double> &start,
+                                const BranchLayout &layout, const BalanceTargets &t)
 {
     const std::vector<bool> &sheet = layout.sheet, &context = layout.context;
     const std::size_t n = s.size();
@@ -65,7 +67,7 @@ std::vector<double> targets_for(const std::vector<double> &s, const BranchLayout
     if (n == 1)
         return out;
     const double floor = std::min(t.floor, 0.9 / static_cast<double>(n - 1));
-    std::vector<bool> fixed(n, false);
+    std::vector<bool> fixed(n, false), capped(n, false);
     for (int round = 0; round < 8; ++round) {
         bool changed = false;
         if (!fixed[0] && (out[0] > t.root_cap || out[0] < t.root_floor)) {
@@ -86,7 +88,7 @@ std::vector<double> targets_for(const std::vector<double> &s, const BranchLayout
                 fixed[b] = changed = true;
             } else if (!fixed[b] && b < sheet.size() && sheet[b] && out[b] > t.sheet_cap) {
                 out[b] = t.sheet_cap;
-                fixed[b] = changed = true;
+                fixed[b] = capped[b] = changed = true;
             }
         }
         double fixed_sum = 0, free_sum = 0;
@@ -96,9 +98,32 @@ std::vector<double> targets_for(const std::vector<double> &s, const BranchLayout
             for (std::size_t b = 0; b < n; ++b)
                 if (!fixed[b])
                     out[b] *= (1.0 - fixed_sum) / free_sum;
+        // What the caps give up is not all forced onto the few structures
+        // left free: none grows past kGrowth times its share before the
+        // balance (or the floor).  With the root, the sheets and the context
+        // at their caps, the one left on the CT head (its nasal cavity) took
+        // a third of the picture.
+        for (std::size_t b = 1; b < n; ++b)
+            if (!fixed[b] && static_cast<int32_t>(b) != t.focus && b < start.size() &&
+                out[b] > kGrowth * std::max(start[b], floor)) {
+                out[b] = kGrowth * std::max(start[b], floor);
+                fixed[b] = changed = true;
+            }
         if (!changed)
             break;
     }
+    // What is still left over goes back to the sheets held at their cap (the
+    // CT head's skull), in proportion: the layers one sees through are the
+    // anatomy, where a structure grown many times over is not.
+    double sum = 0, sheets = 0;
+    for (std::size_t b = 0; b < n; ++b) {
+        sum += out[b];
+        sheets += capped[b] ? out[b] : 0.0;
+    }
+    if (sum < 1.0 && sheets > 0)
+        for (std::size_t b = 0; b < n; ++b)
+            if (capped[b])
+                out[b] *= 1.0 + (1.0 - sum) / sheets;
     return out;
 }
 
@@ -120,7 +145,7 @@ BalanceResult iterate(const TransferFunctions &tf, const BranchLayout &layout, c
     std::vector<bool> peeled(n, false); // once peeled, never made denser for the picture's sake
     for (int it = 0; it < kIterations; ++it) {
         throw_if_stopped(stop);
-        const std::vector<double> want = targets_for(shares, layout, targets);
+        const std::vector<double> want = targets_for(shares, r.shares_before, layout, targets);
         const auto context = [&](std::size_t b) {
             return b < layout.context.size() && layout.context[b] && static_cast<int32_t>(b) != targets.focus;
         };

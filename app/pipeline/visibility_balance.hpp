@@ -22,7 +22,12 @@
 //     the structures not already above their share, so coverage never
 //     undoes a floor),
 // changing nothing else: shares already within bounds keep their ratios, so
-// what the generator decided (the residue flow's peeling by Q) stays.  A
+// what the generator decided (the residue flow's peeling by Q) stays.  What
+// the caps give up is not all forced onto the few structures left free: none
+// grows past three times its share before the balance (or the floor), and
+// what is then left goes back to the sheets held at their cap (the CT head's
+// skull); without that limit its nasal cavity, the one structure left free
+// once its headrest became context, took a third of the picture.  A
 // structure that stays hidden however dense it gets lies inside others:
 // then its ancestors in the branch tree (but the root) are thinned, as the
 // residue flow's Q would peel them - unless it is too small to be worth it

@@ -111,6 +111,13 @@ class DefaultImage(unittest.TestCase):
             else:
                 self.assertGreaterEqual(b["visibility"], 0.01, b)
         self.assertEqual(sum(1 for b in r["branches"] if b.get("context") == "outside the body"), 2)
+        # What the headrest gave up is not all forced onto the one structure
+        # left free by the caps (the nasal cavity: 32 % without the limit).
+        cavity = [b for b in r["branches"] if b["kind"] == "minimum"]
+        self.assertEqual(len(cavity), 1)
+        self.assertLess(cavity[0]["visibility"], 0.2)
+        # The skull (a sheet over its cap) takes the rest: bone leads.
+        self.assertGreaterEqual(max(r["branches"], key=lambda b: b["visibility"])["hu_range"][0], 300)
         bone = [b for b in r["branches"] if b["hu_range"][0] >= 300]
         self.assertTrue(bone)
         top3 = sorted(r["branches"], key=lambda b: -b["visibility"])[:3]
